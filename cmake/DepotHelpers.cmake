@@ -1,0 +1,29 @@
+# depot_library(NAME SOURCES ... DEPS ...): a static library with project warnings.
+function(depot_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_library(${name} STATIC ${ARG_SOURCES})
+  target_include_directories(${name} PUBLIC ${DEPOT_SOURCE_DIR})
+  target_compile_options(${name} PRIVATE ${DEPOT_WARNINGS})
+  target_link_libraries(${name} PUBLIC ${ARG_DEPS})
+endfunction()
+
+# depot_test(NAME SOURCES ... DEPS ... [LABELS ...]): a GoogleTest binary beside
+# the code it tests, registered with CTest.
+function(depot_test name)
+  if(NOT DEPOT_BUILD_TESTS)
+    return()
+  endif()
+  cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_compile_options(${name} PRIVATE ${DEPOT_WARNINGS})
+  target_compile_definitions(${name} PRIVATE
+    DEPOT_SOURCE_DIR="${DEPOT_SOURCE_DIR}"
+    DEPOT_SHARED_DATA="${DEPOT_SHARED_DATA}"
+    DEPOT_BINARY_DIR="${CMAKE_BINARY_DIR}")
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main)
+  if(NOT ARG_TIMEOUT)
+    set(ARG_TIMEOUT 600)
+  endif()
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60
+    PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT})
+endfunction()

@@ -1,0 +1,68 @@
+#include "common/tum_io.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "common/error.h"
+
+namespace depot {
+namespace {
+
+std::string write_temp(const std::string& name, const std::string& text) {
+  auto path = std::filesystem::temp_directory_path() / ("depot_tum_io_" + name);
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+TEST(TumIo, TrajectoryRoundTripKeepsPoses) {
+  std::vector<StampedPose> poses;
+  for (int i = 0; i < 5; ++i) {
+    Eigen::Quaterniond q(Eigen::AngleAxisd(0.1 * i, Eigen::Vector3d(1, 2, 3).normalized()));
+    poses.push_back({100.0 + i / 30.0, make_pose(q, Eigen::Vector3d(i, -i, 0.5 * i))});
+  }
+  auto path = write_temp("roundtrip.txt", "");
+  write_tum_trajectory(path, poses);
+  auto back = read_tum_trajectory(path);
+  ASSERT_EQ(back.size(), poses.size());
+  for (size_t i = 0; i < poses.size(); ++i) {
+    EXPECT_NEAR(back[i].timestamp, poses[i].timestamp, 1e-6);
+    EXPECT_LT(translation_between(back[i].pose, poses[i].pose), 1e-8);
+    EXPECT_LT(rotation_angle_between(back[i].pose, poses[i].pose), 1e-8);
+  }
+}
+
+TEST(TumIo, ErrorsNameFileAndLine) {
+  auto path = write_temp("bad.txt", "# header\n1.0 0 0 0 0 0 0 1\n2.0 0 0 nan 0 0 0 1\n");
+  try {
+    read_tum_trajectory(path);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ":3"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(read_tum_trajectory(write_temp("short.txt", "1.0 0 0 0\n")), Error);
+  EXPECT_THROW(read_tum_trajectory(write_temp("empty.txt", "# nothing\n")), Error);
+  EXPECT_THROW(read_tum_trajectory("/nonexistent/file.txt"), Error);
+  EXPECT_THROW(read_tum_trajectory(write_temp("order.txt", "2.0 0 0 0 0 0 0 1\n1.0 0 0 0 0 0 0 1\n")), Error);
+}
+
+TEST(TumIo, DetectsFileKinds) {
+  EXPECT_EQ(detect_tum_file_kind(write_temp("k1.txt", "1.0 0 0 0 0 0 0 1\n")), TumFileKind::kTrajectory);
+  EXPECT_EQ(detect_tum_file_kind(write_temp("k2.txt", "1.0 rgb/1.png\n")), TumFileKind::kFileList);
+  EXPECT_EQ(detect_tum_file_kind(write_temp("k3.txt", "1.0 rgb/1.png 1.01 depth/1.png\n")),
+            TumFileKind::kAssociation);
+}
+
+TEST(TumIo, ReadsRealTumTimestampFiles) {
+  const std::string root = DEPOT_SHARED_DATA;
+  const std::string assoc = root + "/tum/fr3_associations/fr3_walking_xyz.txt";
+  if (!std::filesystem::exists(assoc)) GTEST_SKIP() << "shared data missing: " << assoc;
+  auto pairs = read_associations(assoc);
+  EXPECT_EQ(pairs.size(), 827u);
+  auto gt = read_tum_trajectory(root + "/tum/fr1_xyz_trajectory/groundtruth.txt");
+  EXPECT_EQ(gt.size(), 3000u);
+}
+
+}  // namespace
+}  // namespace depot

@@ -1,0 +1,22 @@
+#include "sim/actors/actor.h"
+
+#include "common/error.h"
+#include "sim/actors/animal.h"
+#include "sim/actors/human.h"
+#include "sim/actors/limb.h"
+
+namespace depot::sim {
+
+Pose ground_pose(const Eigen::Vector2d& xy, double z, double yaw) {
+  return make_pose(rot_z(yaw), Eigen::Vector3d(xy.x(), xy.y(), z));
+}
+
+std::unique_ptr<Actor> make_actor(const ActorSpec& spec, const SeatPose* seat) {
+  if (spec.type == "human") return std::make_unique<HumanActor>(spec, seat);
+  if (spec.type == "dog" || spec.type == "cat" || spec.type == "pig")
+    return std::make_unique<QuadrupedActor>(spec);
+  if (spec.type == "bird") return std::make_unique<BirdActor>(spec);
+  fail(spec.name, "not an animated actor type: '" + spec.type + "'");
+}
+
+}  // namespace depot::sim

@@ -1,0 +1,40 @@
+#pragma once
+#include "sim/actors/actor.h"
+#include "sim/actors/path.h"
+
+namespace depot::sim {
+
+// Four-legged animals (dog, cat, pig): a body, head, four legs in a trotting
+// gait and a wagging tail, walking a path.
+class QuadrupedActor : public Actor {
+ public:
+  explicit QuadrupedActor(const ActorSpec& spec);
+  void pose_parts(double t, std::vector<Pose>& world_poses) const override;
+  Pose root_pose(double t) const override;
+  Eigen::AlignedBox3d local_extent() const override;
+
+ private:
+  struct Build {
+    double body_half_length, body_radius, body_height, leg_length, leg_radius, head_radius,
+        stride, tail_length;
+  };
+  double distance(double t) const;
+  Build b_{};
+  Path2D path_;
+  double speed_ = 1.0, offset_ = 0.0, start_time_ = 0.0, scale_ = 1.0;
+};
+
+// A bird flying a path at some height with flapping wings.
+class BirdActor : public Actor {
+ public:
+  explicit BirdActor(const ActorSpec& spec);
+  void pose_parts(double t, std::vector<Pose>& world_poses) const override;
+  Pose root_pose(double t) const override;
+  Eigen::AlignedBox3d local_extent() const override;
+
+ private:
+  Path2D path_;
+  double speed_ = 2.0, offset_ = 0.0, start_time_ = 0.0, scale_ = 1.0, height_ = 1.6, phase_ = 0.0;
+};
+
+}  // namespace depot::sim

@@ -1,0 +1,32 @@
+#pragma once
+#include "sim/actors/actor.h"
+#include "sim/actors/path.h"
+
+namespace depot::sim {
+
+// A person of rigid parts with an articulated gait (legs and arms swing, the
+// pelvis rides on the stance leg so the torso bobs). Walks a path, pushes a
+// chair/cart with an invisible contact plate in front, or sits on a chair
+// moving head and arms slightly.
+class HumanActor : public Actor {
+ public:
+  HumanActor(const ActorSpec& spec, const SeatPose* seat);
+  void pose_parts(double t, std::vector<Pose>& world_poses) const override;
+  Pose root_pose(double t) const override;
+  Eigen::AlignedBox3d local_extent() const override;
+
+ private:
+  enum class Mode { kWalk, kPush, kSit };
+  double distance(double t) const;
+
+  Mode mode_ = Mode::kWalk;
+  Path2D path_;
+  double speed_ = 1.1;
+  double offset_ = 0.0;
+  double start_time_ = 0.0;
+  double scale_ = 1.0;
+  double phase_ = 0.0;  // per-person offset of idle motions
+  SeatPose seat_;
+};
+
+}  // namespace depot::sim

@@ -1,0 +1,42 @@
+#include "sim/dataset/boxes.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+
+namespace depot::sim {
+
+std::vector<InstanceBox> instance_boxes(const cv::Mat& instance, int min_pixels) {
+  std::map<uint16_t, InstanceBox> boxes;
+  for (int y = 0; y < instance.rows; ++y) {
+    const uint16_t* row = instance.ptr<uint16_t>(y);
+    for (int x = 0; x < instance.cols; ++x) {
+      const uint16_t id = row[x];
+      if (id == 0) continue;
+      auto [it, fresh] = boxes.try_emplace(id);
+      InstanceBox& b = it->second;
+      if (fresh) {
+        b = {id, x, y, x + 1, y + 1, 0};
+      } else {
+        b.x1 = std::min(b.x1, x);
+        b.x2 = std::max(b.x2, x + 1);
+        b.y2 = std::max(b.y2, y + 1);  // rows come in order, so y1 is the first
+      }
+      ++b.pixels;
+    }
+  }
+  std::vector<InstanceBox> out;
+  for (const auto& [id, b] : boxes)
+    if (b.pixels >= min_pixels) out.push_back(b);
+  return out;
+}
+
+std::string yolo_line(int yolo_class, const InstanceBox& b, int width, int height) {
+  char buf[128];
+  std::snprintf(buf, sizeof(buf), "%d %.6f %.6f %.6f %.6f", yolo_class, 0.5 * (b.x1 + b.x2) / width,
+                0.5 * (b.y1 + b.y2) / height, static_cast<double>(b.x2 - b.x1) / width,
+                static_cast<double>(b.y2 - b.y1) / height);
+  return buf;
+}
+
+}  // namespace depot::sim

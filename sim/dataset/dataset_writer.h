@@ -1,0 +1,85 @@
+#pragma once
+// Writes a simulated sequence as a standard TUM RGB-D folder plus labels:
+//   rgb/ depth/ rgb.txt depth.txt associations.txt groundtruth.txt
+//   calibration.yaml, labels/ labels.txt objects.json object_poses.txt
+//   boxes.txt boxes_yolo/ classes.txt info.json [yolo/]
+// Image encoding runs on writer threads; the folder appears only when
+// complete (StagedDirectory).
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "common/staged_directory.h"
+#include "sim/render/rendered_frame.h"
+#include "sim/scenario/class_table.h"
+#include "sim/scenario/scenario.h"
+#include "sim/scene/scene_model.h"
+#include "sim/world/simulated_sequence.h"
+
+namespace depot::sim {
+
+struct DatasetOptions {
+  std::string output;
+  bool overwrite = false;
+  bool yolo_export = false;
+  int writer_threads = 2;
+  int png_compression = 1;  // zlib level: writing PNGs dominates the cost
+  int min_box_pixels = 30;
+};
+
+struct WriterTimings {
+  double sensor_ms = 0;  // summed over frames
+  double encode_write_ms = 0;
+  size_t bytes = 0;
+};
+
+class DatasetWriter {
+ public:
+  DatasetWriter(const DatasetOptions& options, const Scenario& scenario, const ClassTable& classes,
+                const std::vector<Instance>& instances);
+  ~DatasetWriter();
+
+  // Queues one frame (blocks while the queue is full).
+  void add(RenderedFrame frame, const FrameTruth& truth);
+  // Waits for the writers, writes the text files, and moves the folder into place.
+  WriterTimings finish();
+
+ private:
+  struct Job {
+    RenderedFrame frame;
+    std::string stamp_rgb, stamp_depth;
+    int index = 0;
+  };
+  void worker();
+  void write_job(Job& job, WriterTimings& timings);
+  void rethrow_worker_error();
+  void write_text_files();
+
+  DatasetOptions options_;
+  const Scenario& scenario_;
+  const ClassTable& classes_;
+  const std::vector<Instance>& instances_;
+  std::unique_ptr<StagedDirectory> dir_;
+
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  std::deque<Job> queue_;
+  bool closing_ = false;
+  std::exception_ptr error_;
+  std::vector<std::thread> threads_;
+  WriterTimings totals_;
+
+  std::string rgb_txt_, depth_txt_, assoc_txt_, gt_txt_, labels_txt_, poses_txt_, boxes_txt_;
+  std::vector<std::pair<std::string, std::string>> yolo_files_;  // stamp -> content
+  int frames_ = 0;
+};
+
+std::string format_timestamp(double t);
+
+}  // namespace depot::sim

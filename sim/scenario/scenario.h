@@ -1,0 +1,94 @@
+#pragma once
+// A scenario: everything needed to render one dataset, as plain data.
+// Loaded and validated from YAML by scenario_loader.h; nothing here renders.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace depot::sim {
+
+struct CameraIntrinsics {
+  int width = 640;
+  int height = 480;
+  // MuJoCo 2.2 renders square pixels only, so fx == fy == f.
+  double f = 539.2;
+  double cx = 320.1;
+  double cy = 247.6;
+  double depth_factor = 5000.0;  // PNG value per metre
+};
+
+struct CameraMotionSpec {
+  std::string type = "static";  // xyz, halfsphere, rpy, static, waypoints, file
+  Eigen::Vector3d position{0, 0, 1.3};  // base position (or half-sphere centre)
+  Eigen::Vector3d look_at{0, 1, 1.3};
+  double amplitude = 0.0;  // xyz: m; rpy: deg; halfsphere: radius m (0 = type default)
+  double period = 0.0;     // s (0 = type default)
+  double tremor = 1.0;     // scale of hand tremor (0 = none)
+  // waypoints
+  std::vector<Eigen::Vector2d> path;
+  double height = 1.0;
+  double speed = 0.5;
+  double pitch_deg = 8.0;  // downward tilt of a robot camera
+  bool loop = true;
+  // file
+  std::string file;  // TUM trajectory, resolved path
+  bool anchor_first_pose = true;  // place the first pose at position/look_at
+};
+
+struct TimestampSpec {
+  double rate = 30.0;
+  double start = 1700000000.0;
+  std::string file;  // TUM list/association/trajectory; resolved path
+};
+
+struct SensorSpec {
+  bool ideal = false;
+  double min_depth = 0.4;
+  double max_depth = 4.5;
+  double disparity_noise = 0.07;  // px, Kinect-like (noise grows with depth^2)
+  double disparity_step = 0.125;  // px quantisation
+  double baseline = 0.075;        // m, projector to IR camera (edge shadows)
+  double rgb_noise = 2.0;         // grey levels (sigma)
+};
+
+struct ActorSpec {
+  std::string name;
+  std::string type;    // human, dog, cat, pig, bird, chair, cart
+  std::string action;  // walk, sit, push (human); walk/fly (animals); "" for pushables
+  std::vector<Eigen::Vector2d> path;
+  bool loop = true;  // closed path; otherwise out and back
+  double speed = 1.0;
+  double start_offset = 0.0;  // metres along the path at t = 0
+  double start_time = 0.0;    // s before it starts moving
+  double size = 1.0;
+  Eigen::Vector2d position{0, 0};
+  double yaw_deg = 0.0;
+  std::string target;  // push: pushable name; sit: chair name
+  double height = 0.0;  // bird flight height
+  uint64_t appearance = 0;
+};
+
+struct Scenario {
+  std::string name;
+  std::string description;
+  std::string source_path;  // the YAML file
+  std::string scene_path;   // scene layout YAML
+  std::string classes_path;
+  uint64_t seed = 1;
+  int frames = 300;
+  bool shadows = false;
+  double dynamic_load = 1.0;
+  CameraIntrinsics camera;
+  CameraMotionSpec motion;
+  TimestampSpec timestamps;
+  SensorSpec sensor;
+  std::vector<ActorSpec> written_actors;  // as in the file
+  std::vector<ActorSpec> actors;          // after dynamic-load scaling
+};
+
+bool is_living_actor(const std::string& type);    // human and animals
+bool is_pushable_actor(const std::string& type);  // chair, cart
+
+}  // namespace depot::sim

@@ -1,0 +1,343 @@
+#include "sim/scenario/scenario_loader.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+#include "common/error.h"
+
+namespace fs = std::filesystem;
+
+namespace depot::sim {
+
+bool is_living_actor(const std::string& type) {
+  return type == "human" || type == "dog" || type == "cat" || type == "pig" || type == "bird";
+}
+bool is_pushable_actor(const std::string& type) { return type == "chair" || type == "cart"; }
+
+namespace {
+
+// Typed access to a YAML map with file:line errors and unknown-key checks.
+class Fields {
+ public:
+  Fields(const YAML::Node& node, const std::string& file, const std::string& what)
+      : node_(node), file_(file) {
+    if (!node.IsMap()) fail(where(node), what + " must be a map");
+  }
+
+  std::string where(const YAML::Node& n) const {
+    return file_ + ":" + std::to_string(n.Mark().line + 1);
+  }
+  std::string where() const { return where(node_); }
+
+  void allow_only(std::initializer_list<const char*> keys) const {
+    std::set<std::string> ok(keys.begin(), keys.end());
+    for (const auto& kv : node_) {
+      auto key = kv.first.as<std::string>();
+      if (!ok.count(key)) {
+        std::string list;
+        for (const auto& k : keys) list += std::string(list.empty() ? "" : ", ") + k;
+        fail(where(kv.first), "unknown key '" + key + "' (expected one of: " + list + ")");
+      }
+    }
+  }
+
+  bool has(const char* key) const { return static_cast<bool>(node_[key]); }
+  YAML::Node node(const char* key) const { return node_[key]; }
+
+  template <typename T>
+  T get(const char* key, const T& fallback) const {
+    YAML::Node n = node_[key];
+    if (!n) return fallback;
+    try {
+      return n.as<T>();
+    } catch (const YAML::Exception&) {
+      fail(where(n), "bad value for '" + std::string(key) + "'");
+    }
+  }
+  std::string str(const char* key, const std::string& fallback = "") const {
+    return get<std::string>(key, fallback);
+  }
+  double number(const char* key, double fallback, double lo, double hi) const {
+    double v = get<double>(key, fallback);
+    if (!std::isfinite(v) || v < lo || v > hi) {
+      fail(where(node_[key] ? node_[key] : node_),
+           "'" + std::string(key) + "' = " + std::to_string(v) + " is out of range [" +
+               std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    }
+    return v;
+  }
+  Eigen::Vector3d vec3(const char* key, const Eigen::Vector3d& fallback) const {
+    YAML::Node n = node_[key];
+    if (!n) return fallback;
+    auto v = get<std::vector<double>>(key, {});
+    if (v.size() != 3 || !std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }))
+      fail(where(n), "'" + std::string(key) + "' must be [x, y, z]");
+    return {v[0], v[1], v[2]};
+  }
+  Eigen::Vector2d vec2(const char* key, const Eigen::Vector2d& fallback) const {
+    YAML::Node n = node_[key];
+    if (!n) return fallback;
+    auto v = get<std::vector<double>>(key, {});
+    if (v.size() != 2 || !std::isfinite(v[0]) || !std::isfinite(v[1]))
+      fail(where(n), "'" + std::string(key) + "' must be [x, y]");
+    return {v[0], v[1]};
+  }
+  std::vector<Eigen::Vector2d> path(const char* key) const {
+    YAML::Node n = node_[key];
+    std::vector<Eigen::Vector2d> out;
+    if (!n) return out;
+    if (!n.IsSequence()) fail(where(n), "'" + std::string(key) + "' must be a list of [x, y]");
+    for (const auto& p : n) {
+      std::vector<double> v;
+      try {
+        v = p.as<std::vector<double>>();
+      } catch (const YAML::Exception&) {
+        fail(where(p), "path point must be [x, y]");
+      }
+      if (v.size() != 2 || !std::isfinite(v[0]) || !std::isfinite(v[1]))
+        fail(where(p), "path point must be [x, y]");
+      out.emplace_back(v[0], v[1]);
+    }
+    return out;
+  }
+  // A path relative to the scenario's folder, which must exist.
+  std::string existing_file(const char* key) const {
+    YAML::Node n = node_[key];
+    if (!n) return "";
+    fs::path p = n.as<std::string>();
+    if (p.is_relative()) p = fs::path(file_).parent_path() / p;
+    std::error_code ec;
+    if (!fs::is_regular_file(p, ec))
+      fail(where(n), "file '" + n.as<std::string>() + "' not found (" + p.lexically_normal().string() + ")");
+    return p.lexically_normal().string();
+  }
+
+ private:
+  YAML::Node node_;
+  std::string file_;
+};
+
+const std::set<std::string> kMotionTypes = {"xyz", "halfsphere", "rpy", "static", "waypoints", "file"};
+
+void read_camera(const Fields& f, CameraIntrinsics& cam) {
+  f.allow_only({"width", "height", "f", "cx", "cy", "depth_factor"});
+  cam.width = static_cast<int>(f.number("width", cam.width, 16, 4096));
+  cam.height = static_cast<int>(f.number("height", cam.height, 16, 4096));
+  // Scale the default principal point and focal length with the image size.
+  double sx = cam.width / 640.0;
+  cam.f = f.number("f", 539.2 * sx, 1.0, 1e5);
+  cam.cx = f.number("cx", 320.1 * sx, 0.0, cam.width);
+  cam.cy = f.number("cy", 247.6 * cam.height / 480.0, 0.0, cam.height);
+  cam.depth_factor = f.number("depth_factor", cam.depth_factor, 1.0, 1e5);
+}
+
+void read_motion(const Fields& f, CameraMotionSpec& m) {
+  f.allow_only({"type", "position", "look_at", "amplitude", "period", "tremor", "path", "height",
+                "speed", "pitch_deg", "loop", "file", "anchor_first_pose"});
+  m.type = f.str("type", "static");
+  if (!kMotionTypes.count(m.type))
+    fail(f.where(f.node("type")), "unknown camera motion '" + m.type +
+                                      "' (expected xyz, halfsphere, rpy, static, waypoints, file)");
+  m.position = f.vec3("position", m.position);
+  m.look_at = f.vec3("look_at", m.look_at);
+  if ((m.look_at - m.position).norm() < 1e-3 && m.type != "waypoints")
+    fail(f.where(), "camera look_at must differ from position");
+  m.amplitude = f.number("amplitude", 0.0, 0.0, 90.0);
+  m.period = f.number("period", 0.0, 0.0, 1000.0);
+  m.tremor = f.number("tremor", 1.0, 0.0, 10.0);
+  m.path = f.path("path");
+  m.height = f.number("height", m.height, 0.05, 4.0);
+  m.speed = f.number("speed", m.speed, 0.01, 3.0);
+  m.pitch_deg = f.number("pitch_deg", m.pitch_deg, -60.0, 60.0);
+  m.loop = f.get<bool>("loop", true);
+  m.file = f.existing_file("file");
+  m.anchor_first_pose = f.get<bool>("anchor_first_pose", true);
+  if (m.type == "waypoints" && m.path.size() < 2)
+    fail(f.where(), "waypoints motion needs a 'path' of at least two points");
+  if (m.type == "file" && m.file.empty()) fail(f.where(), "file motion needs 'file'");
+}
+
+void read_timestamps(const Fields& f, TimestampSpec& t) {
+  f.allow_only({"rate", "start", "file"});
+  t.rate = f.number("rate", t.rate, 0.1, 1000.0);
+  t.start = f.number("start", t.start, 0.0, 1e11);
+  t.file = f.existing_file("file");
+}
+
+void read_sensor(const Fields& f, SensorSpec& s) {
+  f.allow_only({"model", "min_depth", "max_depth", "disparity_noise", "disparity_step",
+                "baseline", "rgb_noise"});
+  std::string model = f.str("model", "kinect");
+  if (model != "kinect" && model != "ideal")
+    fail(f.where(f.node("model")), "unknown sensor model '" + model + "' (expected kinect or ideal)");
+  s.ideal = model == "ideal";
+  s.min_depth = f.number("min_depth", s.min_depth, 0.0, 10.0);
+  s.max_depth = f.number("max_depth", s.max_depth, 0.5, 50.0);
+  s.disparity_noise = f.number("disparity_noise", s.disparity_noise, 0.0, 5.0);
+  s.disparity_step = f.number("disparity_step", s.disparity_step, 0.0, 2.0);
+  s.baseline = f.number("baseline", s.baseline, 0.0, 1.0);
+  s.rgb_noise = f.number("rgb_noise", s.rgb_noise, 0.0, 50.0);
+  if (s.min_depth >= s.max_depth) fail(f.where(), "sensor min_depth must be below max_depth");
+}
+
+ActorSpec read_actor(const Fields& f, size_t index, uint64_t seed) {
+  f.allow_only({"name", "type", "action", "path", "loop", "speed", "start_offset", "start_time",
+                "size", "position", "yaw_deg", "pushes", "sit_on", "height", "appearance"});
+  ActorSpec a;
+  a.type = f.str("type");
+  if (!is_living_actor(a.type) && !is_pushable_actor(a.type))
+    fail(f.where(f.node("type") ? f.node("type") : YAML::Node()),
+         "unknown actor type '" + a.type + "' (expected human, dog, cat, pig, bird, chair, cart)");
+  a.name = f.str("name", a.type + "_" + std::to_string(index));
+  a.path = f.path("path");
+  a.loop = f.get<bool>("loop", true);
+  a.speed = f.number("speed", a.type == "human" ? 1.1 : 0.9, 0.0, 5.0);
+  a.start_offset = f.number("start_offset", 0.0, 0.0, 1e4);
+  a.start_time = f.number("start_time", 0.0, 0.0, 1e4);
+  a.size = f.number("size", 1.0, 0.3, 3.0);
+  a.position = f.vec2("position", a.position);
+  a.yaw_deg = f.number("yaw_deg", 0.0, -720.0, 720.0);
+  a.height = f.number("height", a.type == "bird" ? 1.6 : 0.0, 0.0, 4.0);
+  a.appearance = f.get<uint64_t>("appearance", seed * 7919 + index);
+  if (f.has("pushes")) {
+    a.action = "push";
+    a.target = f.str("pushes");
+  } else if (f.has("sit_on")) {
+    a.action = "sit";
+    a.target = f.str("sit_on");
+  } else if (is_living_actor(a.type)) {
+    a.action = f.str("action", a.type == "bird" ? "fly" : "walk");
+  }
+  static const std::set<std::string> kActions = {"walk", "fly", "sit", "push", ""};
+  if (!kActions.count(a.action)) fail(f.where(), "unknown action '" + a.action + "'");
+  if ((a.action == "push" || a.action == "sit") && a.type != "human")
+    fail(f.where(), "only humans can " + a.action);
+  if ((a.action == "walk" || a.action == "fly" || a.action == "push") && a.path.size() < 2)
+    fail(f.where(), "actor '" + a.name + "' needs a 'path' of at least two points");
+  return a;
+}
+
+}  // namespace
+
+Scenario load_scenario(const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    fail(path, "cannot open scenario file");
+  } catch (const YAML::Exception& e) {
+    fail(path + ":" + std::to_string(e.mark.line + 1), "YAML syntax error: " + e.msg);
+  }
+  if (!root || root.IsNull()) fail(path, "empty scenario file");
+  Fields top(root, path, "scenario");
+  top.allow_only({"name", "description", "scene", "classes", "seed", "frames", "shadows",
+                  "dynamic_load", "camera", "motion", "timestamps", "sensor", "actors"});
+
+  Scenario s;
+  s.source_path = path;
+  s.name = top.str("name", fs::path(path).stem().string());
+  s.description = top.str("description");
+  fs::path here = fs::path(path).parent_path();
+  s.scene_path = top.has("scene") ? top.existing_file("scene")
+                                  : (here / "../scenes/depot.yaml").lexically_normal().string();
+  s.classes_path = top.has("classes") ? top.existing_file("classes")
+                                      : (here / "../scenes/classes.yaml").lexically_normal().string();
+  s.seed = top.get<uint64_t>("seed", 1);
+  s.frames = static_cast<int>(top.number("frames", 300, 1, 1e6));
+  s.shadows = top.get<bool>("shadows", false);
+  s.dynamic_load = top.number("dynamic_load", 1.0, 0.0, 4.0);
+
+  if (top.has("camera")) read_camera(Fields(top.node("camera"), path, "camera"), s.camera);
+  else read_camera(Fields(YAML::Node(YAML::NodeType::Map), path, "camera"), s.camera);
+  if (!top.has("motion")) fail(top.where(), "missing 'motion'");
+  read_motion(Fields(top.node("motion"), path, "motion"), s.motion);
+  if (top.has("timestamps")) read_timestamps(Fields(top.node("timestamps"), path, "timestamps"), s.timestamps);
+  if (top.has("sensor")) read_sensor(Fields(top.node("sensor"), path, "sensor"), s.sensor);
+
+  if (YAML::Node actors = top.node("actors")) {
+    if (!actors.IsSequence()) fail(top.where(actors), "'actors' must be a list");
+    size_t i = 0;
+    for (const auto& node : actors)
+      s.written_actors.push_back(read_actor(Fields(node, path, "actor"), i++, s.seed));
+  }
+  // Cross-references: unique names, push/sit targets exist and are pushables.
+  std::set<std::string> names;
+  for (const auto& a : s.written_actors) {
+    if (!names.insert(a.name).second) fail(path, "duplicate actor name '" + a.name + "'");
+  }
+  std::set<std::string> claimed;
+  for (const auto& a : s.written_actors) {
+    if (a.target.empty()) continue;
+    auto it = std::find_if(s.written_actors.begin(), s.written_actors.end(),
+                           [&](const ActorSpec& b) { return b.name == a.target; });
+    if (it == s.written_actors.end() || !is_pushable_actor(it->type))
+      fail(path, "actor '" + a.name + "' refers to '" + a.target + "', which is not a chair or cart");
+    if (a.action == "sit" && it->type != "chair")
+      fail(path, "actor '" + a.name + "' can only sit on a chair");
+    if (!claimed.insert(a.target).second)
+      fail(path, "'" + a.target + "' is used by more than one actor");
+  }
+  apply_dynamic_load(s, s.dynamic_load);
+  return s;
+}
+
+void apply_dynamic_load(Scenario& s, double load) {
+  if (!std::isfinite(load) || load < 0.0 || load > 4.0)
+    fail(s.source_path, "dynamic load " + std::to_string(load) + " is out of range [0, 4]");
+  // Always scale from the actors as written, so calls do not compound.
+  s.dynamic_load = load;
+  s.actors = s.written_actors;
+  if (std::abs(load - 1.0) < 1e-12) return;
+
+  std::vector<ActorSpec> living;
+  for (const auto& a : s.actors)
+    if (is_living_actor(a.type)) living.push_back(a);
+  const size_t target_count = static_cast<size_t>(std::lround(load * living.size()));
+  const double speed_scale = std::clamp(0.6 + 0.4 * load, 0.5, 2.0);
+  const double size_scale = std::clamp(0.85 + 0.15 * load, 0.7, 1.3);
+
+  // Keep the first `target_count` living actors (in file order); a removed
+  // pusher leaves its cart standing; a removed sitter leaves the chair empty.
+  std::vector<ActorSpec> kept;
+  size_t living_seen = 0;
+  for (const auto& a : s.actors) {
+    if (is_living_actor(a.type) && living_seen++ >= target_count) continue;
+    kept.push_back(a);
+  }
+  // Add clones of moving (walking/flying) actors, offset along their path.
+  std::vector<ActorSpec> movers;
+  for (const auto& a : living)
+    if (a.action == "walk" || a.action == "fly") movers.push_back(a);
+  for (size_t i = living.size(); i < target_count && !movers.empty(); ++i) {
+    ActorSpec c = movers[(i - living.size()) % movers.size()];
+    size_t round = (i - living.size()) / movers.size() + 1;
+    c.name += "_c" + std::to_string(i);
+    c.start_offset += 2.3 * round + 0.7 * (i % 3);
+    c.appearance = c.appearance * 31 + i;
+    if (round % 2 == 1) std::reverse(c.path.begin(), c.path.end());
+    kept.push_back(c);
+  }
+  for (auto& a : kept) {
+    if (!is_living_actor(a.type)) continue;
+    a.speed *= speed_scale;
+    a.size *= size_scale;
+  }
+  s.actors = kept;
+}
+
+std::vector<std::string> list_scenarios(const std::string& folder) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(folder, ec)) {
+    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+  }
+  if (ec) fail(folder, "cannot list scenarios folder");
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace depot::sim

@@ -1,0 +1,23 @@
+#pragma once
+// Geometry of the depot's furniture and of the pushable objects, built from
+// primitives. Each returns one or more labelled instances.
+#include <cstdint>
+#include <vector>
+
+#include "sim/scene/geometry.h"
+#include "sim/scene/scene_layout.h"
+
+namespace depot::sim {
+
+// A static scene object (rack, crates, desk...): its instances (e.g. a rack
+// and the goods on it, a desk and its monitor). Deterministic for a seed.
+std::vector<InstanceGeometry> build_scene_object(const SceneObject& object, uint64_t seed);
+
+// A free body that humans can push: "chair" or "cart", in its body frame
+// (origin on the floor, x forward).
+InstanceGeometry build_pushable(const std::string& type, const std::string& name, uint64_t seed);
+
+// Height of a chair's seat above the floor.
+constexpr double kChairSeatHeight = 0.46;
+
+}  // namespace depot::sim

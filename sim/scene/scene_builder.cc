@@ -1,0 +1,246 @@
+#include "sim/scene/scene_model.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "common/error.h"
+#include "common/rng.h"
+#include "sim/actors/limb.h"
+#include "sim/scene/depot_objects.h"
+#include "sim/scene/geometry.h"
+#include "sim/scene/textures.h"
+
+namespace depot::sim {
+
+const char* instance_kind_name(InstanceKind k) {
+  switch (k) {
+    case InstanceKind::kStructure: return "structure";
+    case InstanceKind::kStatic: return "static";
+    case InstanceKind::kPushable: return "pushable";
+    case InstanceKind::kActor: return "actor";
+  }
+  return "static";
+}
+
+namespace {
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.6g", std::abs(v) < 1e-12 ? 0.0 : v);
+  return buf;
+}
+std::string vec(const Eigen::Vector3d& v) { return num(v.x()) + " " + num(v.y()) + " " + num(v.z()); }
+std::string quat(const Eigen::Matrix3d& r) {
+  Eigen::Quaterniond q(r);
+  q.normalize();
+  return num(q.w()) + " " + num(q.x()) + " " + num(q.y()) + " " + num(q.z());
+}
+
+const char* shape_name(Shape s) {
+  switch (s) {
+    case Shape::kBox: return "box";
+    case Shape::kSphere: return "sphere";
+    case Shape::kCapsule: return "capsule";
+    case Shape::kEllipsoid: return "ellipsoid";
+    case Shape::kCylinder: return "cylinder";
+  }
+  return "box";
+}
+
+void write_geom(std::ostringstream& x, const GeomDesc& g) {
+  x << "<geom type=\"" << shape_name(g.shape) << "\" size=\"";
+  switch (g.shape) {
+    case Shape::kSphere: x << num(g.size.x()); break;
+    case Shape::kCapsule:
+    case Shape::kCylinder: x << num(g.size.x()) << " " << num(g.size.y()); break;
+    default: x << vec(g.size);
+  }
+  x << "\" pos=\"" << vec(g.local.translation()) << "\" quat=\"" << quat(g.local.linear()) << "\"";
+  x << " contype=\"" << g.contype << "\" conaffinity=\"" << g.conaffinity << "\"";
+  x << " friction=\"" << num(g.friction) << " 0.005 0.0001\" density=\"" << num(g.density) << "\"";
+  if (!g.visible) {
+    x << " group=\"3\" rgba=\"0 0 0 0\"";
+  } else if (!g.material.empty()) {
+    x << " material=\"" << g.material << "\"";
+  }
+  x << "/>\n";
+}
+
+// Static bodies and the world's planes.
+void write_hall(std::ostringstream& x, const SceneLayout& l) {
+  const double hx = l.length / 2, hy = l.width / 2, h = l.height;
+  x << "<geom name=\"floor\" type=\"plane\" size=\"" << num(hx) << " " << num(hy)
+    << " 0.5\" material=\"floor\" contype=\"1\" conaffinity=\"1\" friction=\"0.8 0.005 0.0001\"/>\n";
+  struct Wall {
+    Eigen::Vector3d pos, xaxis;
+    double half_width;
+  };
+  const Wall walls[] = {{{0, hy, h / 2}, {1, 0, 0}, hx},
+                        {{0, -hy, h / 2}, {-1, 0, 0}, hx},
+                        {{hx, 0, h / 2}, {0, -1, 0}, hy},
+                        {{-hx, 0, h / 2}, {0, 1, 0}, hy}};
+  for (const auto& w : walls) {
+    x << "<geom type=\"plane\" size=\"" << num(w.half_width) << " " << num(h / 2) << " 0.5\" pos=\"" << vec(w.pos)
+      << "\" xyaxes=\"" << vec(w.xaxis) << " 0 0 1\" material=\"wall\" contype=\"0\" conaffinity=\"0\"/>\n";
+  }
+  x << "<geom type=\"plane\" size=\"" << num(hx) << " " << num(hy) << " 0.5\" pos=\"0 0 " << num(h)
+    << "\" xyaxes=\"1 0 0 0 -1 0\" material=\"ceiling\" contype=\"0\" conaffinity=\"0\"/>\n";
+}
+
+std::string png_bytes(const cv::Mat& bgr) {
+  std::vector<uchar> buf;
+  cv::imencode(".png", bgr, buf, {cv::IMWRITE_PNG_COMPRESSION, 1});
+  return std::string(buf.begin(), buf.end());
+}
+
+bool inside_hall(const SceneLayout& l, const Eigen::Vector2d& p, double margin = 0.0) {
+  return std::abs(p.x()) <= l.length / 2 - margin && std::abs(p.y()) <= l.width / 2 - margin;
+}
+
+}  // namespace
+
+SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes, const Scenario& scenario) {
+  SceneModel model;
+  const CameraIntrinsics& cam = scenario.camera;
+  std::ostringstream x;
+  x << "<mujoco model=\"depot\">\n<compiler angle=\"radian\"/>\n<option timestep=\"0.002\"/>\n";
+  x << "<visual>\n<global offwidth=\"" << cam.width << "\" offheight=\"" << cam.height << "\"/>\n"
+    << "<quality offsamples=\"0\" shadowsize=\"" << (scenario.shadows ? 2048 : 0) << "\"/>\n"
+    << "<headlight ambient=\"0.32 0.32 0.32\" diffuse=\"0 0 0\" specular=\"0 0 0\"/>\n"
+    << "<map znear=\"0.005\" zfar=\"3\"/>\n</visual>\n";
+  x << "<statistic extent=\"10\" center=\"0 0 1\"/>\n";
+
+  // Textures and materials, in memory.
+  TextureSet textures = make_depot_textures(scenario.seed);
+  x << "<asset>\n";
+  for (const auto& t : textures.textures) {
+    std::string file = "tex_" + t.name + ".png";
+    model.assets.emplace_back(file, png_bytes(t.bgr));
+    x << "<texture name=\"" << t.name << "\" type=\"" << (t.cube ? "cube" : "2d") << "\" file=\"" << file << "\"/>\n";
+  }
+  for (const auto& m : textures.materials) {
+    x << "<material name=\"" << m.name << "\"";
+    if (!m.texture.empty()) {
+      x << " texture=\"" << m.texture << "\" texrepeat=\"" << num(m.texrepeat) << " " << num(m.texrepeat)
+        << "\" texuniform=\"true\"";
+    }
+    x << " rgba=\"" << num(m.rgba[0]) << " " << num(m.rgba[1]) << " " << num(m.rgba[2]) << " " << num(m.rgba[3])
+      << "\" specular=\"0\" shininess=\"0\" reflectance=\"0\"/>\n";
+  }
+  x << "</asset>\n<worldbody>\n";
+  for (const auto& l : layout.lights) {
+    x << "<light pos=\"" << vec(l) << "\" dir=\"0 0 -1\" directional=\"false\" diffuse=\"0.42 0.42 0.4\""
+      << " specular=\"0 0 0\" attenuation=\"1 0.02 0\" cutoff=\"80\" exponent=\"1\" castshadow=\""
+      << (scenario.shadows ? "true" : "false") << "\"/>\n";
+  }
+
+  auto add_instance = [&](const std::string& name, const std::string& class_name, InstanceKind kind,
+                          const std::string& context) -> Instance& {
+    const ObjectClass& c = classes.get(class_name, context);
+    Instance inst;
+    if (model.instances.size() >= 65534) fail(context, "too many instances");
+    inst.id = static_cast<uint16_t>(model.instances.size() + 1);
+    inst.name = name;
+    inst.class_name = c.name;
+    inst.category = c.category;
+    inst.kind = kind;
+    model.instances.push_back(inst);
+    return model.instances.back();
+  };
+
+  // 1: the hall itself (world body).
+  write_hall(x, layout);
+  {
+    Instance& hall = add_instance("hall", "structure", InstanceKind::kStructure, layout.path);
+    hall.bodies.push_back("world");
+    hall.extent = Eigen::AlignedBox3d(Eigen::Vector3d(-layout.length / 2, -layout.width / 2, 0),
+                                      Eigen::Vector3d(layout.length / 2, layout.width / 2, layout.height));
+  }
+
+  // Static furniture: one fixed body per instance.
+  for (const SceneObject& object : layout.objects) {
+    for (const InstanceGeometry& g : build_scene_object(object, scenario.seed)) {
+      Instance& inst = add_instance(g.name, g.class_name, InstanceKind::kStatic, layout.path + ": object '" + object.name + "'");
+      const std::string body = "static/" + g.name;
+      inst.bodies.push_back(body);
+      inst.pose = g.pose;
+      inst.extent = local_bounds(g.geoms);
+      x << "<body name=\"" << body << "\" pos=\"" << vec(g.pose.translation()) << "\" quat=\"" << quat(g.pose.linear())
+        << "\">\n";
+      for (const auto& geom : g.geoms) write_geom(x, geom);
+      x << "</body>\n";
+    }
+  }
+
+  // Pushables: free bodies.
+  const std::string where = scenario.source_path;
+  for (const ActorSpec& a : scenario.actors) {
+    if (!is_pushable_actor(a.type)) continue;
+    if (!inside_hall(layout, a.position, 0.3)) fail(where, "actor '" + a.name + "' is outside the hall");
+    InstanceGeometry g = build_pushable(a.type, a.name, derive_seed(scenario.seed, a.appearance));
+    Instance& inst = add_instance(a.name, a.type, InstanceKind::kPushable, where + ": actor '" + a.name + "'");
+    const std::string body = "pushable/" + a.name;
+    inst.bodies.push_back(body);
+    inst.pose = ground_pose(a.position, 0.0, deg(a.yaw_deg));
+    inst.extent = local_bounds(g.geoms);
+    x << "<body name=\"" << body << "\" pos=\"" << vec(inst.pose.translation()) << "\" quat=\""
+      << quat(inst.pose.linear()) << "\">\n<freejoint/>\n";
+    for (const auto& geom : g.geoms) write_geom(x, geom);
+    x << "</body>\n";
+  }
+
+  // Animated actors: one mocap body per part.
+  for (const ActorSpec& a : scenario.actors) {
+    if (!is_living_actor(a.type)) continue;
+    for (const auto& p : a.path)
+      if (!inside_hall(layout, p, 0.2)) fail(where, "actor '" + a.name + "' has a path point outside the hall");
+    SeatPose seat;
+    const SeatPose* seat_ptr = nullptr;
+    if (a.action == "sit") {
+      for (const ActorSpec& c : scenario.actors)
+        if (c.name == a.target) {
+          seat.position = c.position;
+          seat.yaw = deg(c.yaw_deg);
+          seat.seat_height = kChairSeatHeight;
+        }
+      seat_ptr = &seat;
+    }
+    std::unique_ptr<Actor> actor = make_actor(a, seat_ptr);
+    Instance& inst = add_instance(a.name, actor->class_name(), InstanceKind::kActor, where + ": actor '" + a.name + "'");
+    inst.actor = static_cast<int>(model.actors.size());
+    inst.pose = actor->root_pose(0.0);
+    inst.extent = actor->local_extent();
+    std::vector<Pose> poses;
+    actor->pose_parts(0.0, poses);
+    for (size_t i = 0; i < actor->parts().size(); ++i) {
+      const BodyPart& part = actor->parts()[i];
+      const std::string body = "actor/" + a.name + "/" + part.name;
+      inst.bodies.push_back(body);
+      GeomDesc g;
+      g.shape = part.shape;
+      g.size = part.size;
+      g.material = part.material;
+      g.visible = !part.pusher;
+      g.contype = part.pusher ? kCollidePusher : 0;
+      g.conaffinity = 0;
+      x << "<body name=\"" << body << "\" mocap=\"true\" pos=\"" << vec(poses[i].translation()) << "\" quat=\""
+        << quat(poses[i].linear()) << "\">\n";
+      write_geom(x, g);
+      x << "</body>\n";
+    }
+    model.actors.push_back(std::move(actor));
+  }
+
+  // The RGB-D camera rides a mocap body; MuJoCo cameras look along -z.
+  const double fovy = 2.0 * std::atan(cam.height / 2.0 / cam.f) * 180.0 / M_PI;
+  x << "<body name=\"" << model.camera_body << "\" mocap=\"true\" pos=\"0 0 1\">\n<camera name=\""
+    << model.camera_name << "\" fovy=\"" << num(fovy) << "\"/>\n</body>\n";
+  x << "</worldbody>\n</mujoco>\n";
+  model.xml = x.str();
+  return model;
+}
+
+}  // namespace depot::sim

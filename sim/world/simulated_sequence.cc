@@ -1,0 +1,87 @@
+#include "sim/world/simulated_sequence.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "common/error.h"
+#include "common/tum_io.h"
+#include "sim/scene/scene_layout.h"
+
+namespace depot::sim {
+
+std::vector<std::pair<double, double>> frame_timestamps(const Scenario& s) {
+  std::vector<std::pair<double, double>> out;
+  if (!s.timestamps.file.empty()) {
+    // An association file gives (rgb, depth) pairs; any other TUM file its
+    // first column for both.
+    if (detect_tum_file_kind(s.timestamps.file) == TumFileKind::kAssociation) {
+      for (const auto& a : read_associations(s.timestamps.file)) out.emplace_back(a.rgb_timestamp, a.depth_timestamp);
+    } else {
+      for (double t : read_timestamps(s.timestamps.file)) out.emplace_back(t, t);
+    }
+  } else {
+    for (int i = 0; i < s.frames; ++i) {
+      // Round to microseconds, as TUM files are written.
+      double t = std::round((s.timestamps.start + i / s.timestamps.rate) * 1e6) / 1e6;
+      out.emplace_back(t, t);
+    }
+  }
+  if (static_cast<int>(out.size()) > s.frames) out.resize(s.frames);
+  return out;
+}
+
+SimulatedSequence::SimulatedSequence(const Scenario& scenario, GlBackend backend)
+    : scenario_(scenario), classes_(ClassTable::load(scenario.classes_path)) {
+  stamps_ = frame_timestamps(scenario_);
+  if (stamps_.empty()) fail(scenario_.source_path, "no frames to render");
+  SceneLayout layout = load_scene_layout(scenario_.scene_path);
+  world_ = std::make_unique<World>(build_scene(layout, classes_, scenario_));
+  motion_ = std::make_unique<CameraMotion>(scenario_.motion, scenario_.seed, stamps_.front().first);
+  renderer_ = std::make_unique<Renderer>(world_->model(), world_->camera_id(), scenario_.camera, backend,
+                                         world_->geom_instances());
+  for (const Instance& inst : world_->instances())
+    if (inst.kind == InstanceKind::kPushable || inst.kind == InstanceKind::kActor) tracked_.push_back(&inst);
+  previous_bodies_.resize(tracked_.size());
+  for (size_t i = 0; i < tracked_.size(); ++i) world_->body_poses(*tracked_[i], previous_bodies_[i]);
+}
+
+bool SimulatedSequence::next(RenderedFrame& frame, FrameTruth& truth, SequenceTimings* timings) {
+  if (next_ >= frame_count()) return false;
+  const auto [t_rgb, t_depth] = stamps_[next_];
+  // The world runs one frame period ahead of the first timestamp, so frame 0
+  // already has a previous state to compare moving flags against.
+  const double world_time = t_rgb - stamps_.front().first + 1.0 / scenario_.timestamps.rate;
+  auto t0 = std::chrono::steady_clock::now();
+  world_->advance_to(world_time);
+  const Pose world_camera = motion_->pose_at(t_rgb);
+  world_->set_camera_pose(world_camera);
+  if (timings)
+    timings->physics_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  renderer_->render(world_->data(), frame, timings ? &timings->render : nullptr);
+
+  const Pose dataset_from_world = motion_->world_from_dataset().inverse();
+  truth.index = next_;
+  truth.rgb_timestamp = t_rgb;
+  truth.depth_timestamp = t_depth;
+  truth.camera = dataset_from_world * world_camera;
+  truth.objects.clear();
+  std::vector<Pose> bodies;
+  for (size_t i = 0; i < tracked_.size(); ++i) {
+    world_->body_poses(*tracked_[i], bodies);
+    ObjectState s;
+    s.id = tracked_[i]->id;
+    s.pose = dataset_from_world * world_->instance_pose(*tracked_[i]);
+    for (size_t b = 0; b < bodies.size(); ++b) {
+      s.max_translation = std::max(s.max_translation, translation_between(bodies[b], previous_bodies_[i][b]));
+      s.max_rotation_deg =
+          std::max(s.max_rotation_deg, rotation_angle_between(bodies[b], previous_bodies_[i][b]) * 180.0 / M_PI);
+    }
+    s.moving = s.max_translation > kMovingTranslation || s.max_rotation_deg > kMovingRotationDeg;
+    previous_bodies_[i] = bodies;
+    truth.objects.push_back(s);
+  }
+  ++next_;
+  return true;
+}
+
+}  // namespace depot::sim

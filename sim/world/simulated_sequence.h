@@ -1,0 +1,70 @@
+#pragma once
+// A scenario played frame by frame in memory: exact RGB, depth and instance
+// images plus the ground truth of each frame. The dataset writer stores it;
+// SLAM tests may also consume it directly.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/pose.h"
+#include "sim/camera/camera_motion.h"
+#include "sim/render/renderer.h"
+#include "sim/scenario/class_table.h"
+#include "sim/scenario/scenario.h"
+#include "sim/world/world.h"
+
+namespace depot::sim {
+
+struct ObjectState {
+  uint16_t id = 0;
+  Pose pose = Pose::Identity();  // in the dataset frame
+  bool moving = false;           // moved > 1 mm or 0.1 deg since the previous frame
+  double max_translation = 0.0;  // m, largest body displacement since the previous frame
+  double max_rotation_deg = 0.0;
+};
+
+struct FrameTruth {
+  int index = 0;
+  double rgb_timestamp = 0.0;
+  double depth_timestamp = 0.0;
+  Pose camera = Pose::Identity();    // T_dataset_camera
+  std::vector<ObjectState> objects;  // every pushable and actor instance
+};
+
+struct SequenceTimings {
+  double physics_ms = 0;
+  RenderTimings render;
+};
+
+// The frame timestamps of a scenario: (rgb, depth) pairs.
+std::vector<std::pair<double, double>> frame_timestamps(const Scenario& scenario);
+
+constexpr double kMovingTranslation = 0.001;  // m
+constexpr double kMovingRotationDeg = 0.1;
+
+class SimulatedSequence {
+ public:
+  SimulatedSequence(const Scenario& scenario, GlBackend backend);
+  int frame_count() const { return static_cast<int>(stamps_.size()); }
+  int next_index() const { return next_; }
+  // Renders the next frame; false after the last.
+  bool next(RenderedFrame& frame, FrameTruth& truth, SequenceTimings* timings = nullptr);
+
+  const World& world() const { return *world_; }
+  const ClassTable& classes() const { return classes_; }
+  const Scenario& scenario() const { return scenario_; }
+  const Pose& world_from_dataset() const { return motion_->world_from_dataset(); }
+
+ private:
+  Scenario scenario_;
+  ClassTable classes_;
+  std::unique_ptr<World> world_;
+  std::unique_ptr<Renderer> renderer_;
+  std::unique_ptr<CameraMotion> motion_;
+  std::vector<std::pair<double, double>> stamps_;
+  std::vector<const Instance*> tracked_;             // pushables and actors
+  std::vector<std::vector<Pose>> previous_bodies_;   // per tracked instance
+  int next_ = 0;
+};
+
+}  // namespace depot::sim

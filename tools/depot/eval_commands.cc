@@ -1,0 +1,185 @@
+// `depot eval ate|rpe GT EST`: trajectory accuracy as TUM's tools and evo
+// compute it, printed as a block of figures, optionally as JSON and SVG.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "eval/ate.h"
+#include "eval/improvement.h"
+#include "eval/matched_trajectories.h"
+#include "eval/report_json.h"
+#include "eval/result_plots.h"
+#include "eval/rpe.h"
+#include "eval/trajectory_plot.h"
+#include "tools/depot/commands.h"
+
+namespace depot::cli {
+namespace {
+
+struct CommonArgs {
+  std::string reference_path;
+  std::string estimate_path;
+  eval::AssociationOptions association;
+  std::string json_path;
+  std::string plot_path;
+};
+
+struct AteArgs {
+  CommonArgs common;
+  bool sim3 = false;
+  double baseline_rmse = 0.0;
+  CLI::Option* baseline_option = nullptr;  // tells whether --baseline-rmse was given
+};
+
+struct RpeArgs {
+  CommonArgs common;
+  double delta = 1.0;
+  std::string delta_unit = "s";
+};
+
+// A readable check for options that must be > 0 (CLI11's own prints DBL_MAX).
+CLI::Validator positive_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || v <= 0.0) {
+          return "must be a positive number, got '" + text + "'";
+        }
+        return "";
+      },
+      "POSITIVE");
+}
+
+void add_common_options(CLI::App* command, CommonArgs& args) {
+  command->add_option("GT", args.reference_path, "ground-truth trajectory (TUM format)")
+      ->required();
+  command->add_option("EST", args.estimate_path, "estimated trajectory (TUM format)")->required();
+  command
+      ->add_option("--max-dt", args.association.max_difference,
+                   "largest |dt| (s) for associating poses by timestamp")
+      ->check(positive_number())
+      ->capture_default_str();
+  command
+      ->add_option("--offset", args.association.offset,
+                   "time offset (s) added to the estimate's timestamps")
+      ->capture_default_str();
+  command->add_option("--json", args.json_path, "also write a JSON report to this file");
+  command->add_option("--plot", args.plot_path, "also write an SVG figure to this file");
+}
+
+void print_header(const char* metric, const eval::MatchedTrajectories& m) {
+  std::printf("%s  %s  vs ground truth  %s\n", metric, m.estimate_name.c_str(),
+              m.reference_name.c_str());
+  std::printf(
+      "  matched poses  %zu of %zu estimated (%zu ground truth), |dt| < %g s, offset %g s\n",
+      m.size(), m.estimate_size, m.reference_size, m.association.max_difference,
+      m.association.offset);
+}
+
+void print_outputs(const CommonArgs& args) {
+  if (!args.json_path.empty()) std::printf("  json           %s\n", args.json_path.c_str());
+  if (!args.plot_path.empty()) std::printf("  plot           %s\n", args.plot_path.c_str());
+}
+
+void run_ate(const AteArgs& args) {
+  const eval::MatchedTrajectories matched = eval::load_matched_trajectories(
+      args.common.reference_path, args.common.estimate_path, args.common.association);
+  eval::AteOptions options;
+  options.alignment = args.sim3 ? eval::AlignmentKind::kSimilarity : eval::AlignmentKind::kRigid;
+  const eval::AteResult ate = eval::compute_ate(matched, options);
+
+  nlohmann::json report = eval::ate_report_json(matched, ate);
+  double improvement = 0.0;
+  const bool has_baseline = args.baseline_option && args.baseline_option->count() > 0;
+  if (has_baseline) {
+    improvement = eval::improvement_percent(args.baseline_rmse, ate.statistics.rmse);
+    report["baseline_rmse"] = args.baseline_rmse;
+    report["improvement_percent"] = improvement;
+  }
+  if (!args.common.json_path.empty()) eval::write_json_file(args.common.json_path, report);
+  if (!args.common.plot_path.empty()) {
+    eval::write_trajectory_plot_svg(args.common.plot_path, eval::ate_plot(matched, ate));
+  }
+
+  const eval::ErrorStatistics& s = ate.statistics;
+  print_header("ATE", matched);
+  std::printf("  alignment      %s, scale %.6g\n", eval::to_string(ate.alignment_kind).c_str(),
+              ate.alignment.scale);
+  std::printf("  translational error (m)\n");
+  std::printf("        rmse  %.6f\n        mean  %.6f\n      median  %.6f\n", s.rmse, s.mean,
+              s.median);
+  std::printf("         std  %.6f\n         min  %.6f\n         max  %.6f\n", s.std, s.min, s.max);
+  if (has_baseline) {
+    std::printf("  improvement over baseline rmse %.6g m (Eq. 9): %.2f %%\n", args.baseline_rmse,
+                improvement);
+  }
+  print_outputs(args.common);
+}
+
+void run_rpe(const RpeArgs& args) {
+  const eval::MatchedTrajectories matched = eval::load_matched_trajectories(
+      args.common.reference_path, args.common.estimate_path, args.common.association);
+  eval::PairSelection selection;
+  selection.delta = args.delta;
+  selection.unit = args.delta_unit == "f" ? eval::DeltaUnit::kFrames : eval::DeltaUnit::kSeconds;
+  const eval::RpeResult rpe = eval::compute_rpe(matched, selection);
+
+  if (!args.common.json_path.empty()) {
+    eval::write_json_file(args.common.json_path, eval::rpe_report_json(matched, rpe));
+  }
+  if (!args.common.plot_path.empty()) {
+    eval::write_trajectory_plot_svg(args.common.plot_path, eval::rpe_plot(matched, rpe));
+  }
+
+  const eval::ErrorStatistics& t = rpe.translation_statistics;
+  const eval::ErrorStatistics& r = rpe.rotation_statistics;
+  print_header("RPE", matched);
+  std::printf("  delta          %g %s, %zu pairs\n", selection.delta,
+              eval::to_string(selection.unit).c_str(), rpe.pairs.size());
+  std::printf("              translation (m)  rotation (deg)\n");
+  const struct {
+    const char* name;
+    double t, r;
+  } rows[] = {{"rmse", t.rmse, r.rmse}, {"mean", t.mean, r.mean}, {"median", t.median, r.median},
+              {"std", t.std, r.std},    {"min", t.min, r.min},    {"max", t.max, r.max}};
+  for (const auto& row : rows) std::printf("  %10s  %15.6f  %14.6f\n", row.name, row.t, row.r);
+  print_outputs(args.common);
+}
+
+}  // namespace
+
+void register_eval_commands(CLI::App& app) {
+  CLI::App* group = app.add_subcommand("eval", "Trajectory accuracy: ATE and RPE (TUM / evo)");
+  group->require_subcommand(1);
+
+  auto ate_args = std::make_shared<AteArgs>();
+  CLI::App* ate = group->add_subcommand(
+      "ate", "Absolute trajectory error after aligning the estimate (evo_ape -a)");
+  add_common_options(ate, ate_args->common);
+  ate->add_flag("--sim3", ate_args->sim3, "align with scale (Sim(3)) instead of SE(3)");
+  ate_args->baseline_option =
+      ate->add_option("--baseline-rmse", ate_args->baseline_rmse,
+                      "a baseline's ATE RMSE (m): also print the improvement, paper Eq. 9")
+          ->check(positive_number());
+  ate->callback([ate_args] { run_ate(*ate_args); });
+
+  auto rpe_args = std::make_shared<RpeArgs>();
+  CLI::App* rpe = group->add_subcommand(
+      "rpe", "Relative pose error over a fixed delta (evo_rpe, TUM evaluate_rpe.py)");
+  add_common_options(rpe, rpe_args->common);
+  rpe->add_option("--delta", rpe_args->delta, "distance between compared poses")
+      ->check(positive_number())
+      ->capture_default_str();
+  rpe->add_option("--delta-unit", rpe_args->delta_unit,
+                  "unit of --delta: s (seconds) or f (frames)")
+      ->check(CLI::IsMember({"s", "f"}))
+      ->capture_default_str();
+  rpe->callback([rpe_args] { run_rpe(*rpe_args); });
+}
+
+}  // namespace depot::cli

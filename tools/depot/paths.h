@@ -1,0 +1,12 @@
+#pragma once
+// Where the shipped scenarios live, and resolving a scenario argument.
+#include <string>
+
+namespace depot::cli {
+
+// $DEPOT_SCENARIOS, else the source tree's scenarios/ folder.
+std::string scenarios_folder();
+// A path to a YAML file, or the name of a shipped scenario.
+std::string resolve_scenario(const std::string& name_or_path);
+
+}  // namespace depot::cli
