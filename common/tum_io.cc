@@ -29,6 +29,8 @@ std::vector<Row> read_rows(const std::string& path) {
     if (!text.empty() && text.back() == '\r') text.pop_back();
     auto first = text.find_first_not_of(" \t");
     if (first == std::string::npos || text[first] == '#') continue;
+    // Some copies of TUM files carry the column header without '#'.
+    if (rows.empty() && text.compare(first, 9, "timestamp") == 0) continue;
     Row row;
     row.line = line_no;
     std::istringstream fields(text);

@@ -72,7 +72,9 @@ HumanActor::HumanActor(const ActorSpec& spec, const SeatPose* seat) {
     add("forearm_" + side, Shape::kCapsule, {0.042, kForearm / 2, 0}, skin);
   }
   if (mode_ == Mode::kPush) {
-    parts_.push_back({"pusher", Shape::kBox, Eigen::Vector3d(0.05, 0.26, 0.36) * s, "", true});
+    // Hand height of the plate is low (0.3-0.62 m): it pushes seats and cart
+    // frames near their centre of mass, so they slide rather than tip.
+    parts_.push_back({"pusher", Shape::kBox, Eigen::Vector3d(0.05, 0.26, 0.16) * s, "", true});
   }
 }
 
@@ -168,7 +170,7 @@ void HumanActor::pose_parts(double t, std::vector<Pose>& out) const {
   const Eigen::Vector3d head = neck + r_head * Eigen::Vector3d(0, 0, 0.12 * s);
   local[kHead] = make_pose(r_head, head);
   local[kHair] = make_pose(r_head, head + r_head * Eigen::Vector3d(-0.02 * s, 0, 0.045 * s));
-  if (mode_ == Mode::kPush) local[kPusher] = make_pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.42 * s, 0, 0.68 * s));
+  if (mode_ == Mode::kPush) local[kPusher] = make_pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.42 * s, 0, 0.46 * s));
 
   out.resize(parts_.size());
   for (size_t i = 0; i < parts_.size(); ++i) out[i] = root * local[i];

@@ -18,6 +18,7 @@ void apply_overrides(Scenario& scenario, const RenderRequest& r) {
   if (r.seed) scenario.seed = *r.seed;
   if (r.dynamic_load) apply_dynamic_load(scenario, *r.dynamic_load);
   if (r.ideal) scenario.sensor.ideal = true;
+  if (r.width) scale_camera(scenario.camera, *r.width);
 }
 
 RenderSummary render_dataset(Scenario scenario, const RenderRequest& request) {

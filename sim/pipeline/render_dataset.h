@@ -15,6 +15,7 @@ struct RenderRequest {
   std::optional<int> frames;
   std::optional<uint64_t> seed;
   std::optional<double> dynamic_load;
+  std::optional<int> width;  // rescales the camera
   bool ideal = false;
   bool progress = true;
 };

@@ -88,6 +88,10 @@ struct Scenario {
   std::vector<ActorSpec> actors;          // after dynamic-load scaling
 };
 
+// Resizes the image to `width` (height keeps the aspect ratio), scaling the
+// intrinsics consistently (pixel centres at integer coordinates).
+void scale_camera(CameraIntrinsics& camera, int width);
+
 bool is_living_actor(const std::string& type);    // human and animals
 bool is_pushable_actor(const std::string& type);  // chair, cart
 

@@ -18,6 +18,16 @@ bool is_living_actor(const std::string& type) {
 }
 bool is_pushable_actor(const std::string& type) { return type == "chair" || type == "cart"; }
 
+void scale_camera(CameraIntrinsics& c, int width) {
+  if (width < 16 || width > 4096) fail("--width", "image width must be 16..4096");
+  const double s = static_cast<double>(width) / c.width;
+  c.height = static_cast<int>(std::lround(c.height * s));
+  c.width = width;
+  c.f *= s;
+  c.cx = (c.cx + 0.5) * s - 0.5;
+  c.cy = (c.cy + 0.5) * s - 0.5;
+}
+
 namespace {
 
 // Typed access to a YAML map with file:line errors and unknown-key checks.

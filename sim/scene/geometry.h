@@ -20,6 +20,8 @@ struct GeomDesc {
   std::string material;
   int contype = kCollideWorld;
   int conaffinity = kCollideWorld;
+  // MuJoCo takes the larger friction of two touching geoms: the floor is
+  // slippery (0.05) so each pushable's own geoms set how it slides.
   double friction = 0.8;
   double density = 1000.0;
   bool visible = true;

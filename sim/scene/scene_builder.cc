@@ -73,7 +73,7 @@ void write_geom(std::ostringstream& x, const GeomDesc& g) {
 void write_hall(std::ostringstream& x, const SceneLayout& l) {
   const double hx = l.length / 2, hy = l.width / 2, h = l.height;
   x << "<geom name=\"floor\" type=\"plane\" size=\"" << num(hx) << " " << num(hy)
-    << " 0.5\" material=\"floor\" contype=\"1\" conaffinity=\"1\" friction=\"0.8 0.005 0.0001\"/>\n";
+    << " 0.5\" material=\"floor\" contype=\"1\" conaffinity=\"1\" friction=\"0.05 0.005 0.0001\"/>\n";
   struct Wall {
     Eigen::Vector3d pos, xaxis;
     double half_width;
@@ -106,9 +106,10 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes, con
   SceneModel model;
   const CameraIntrinsics& cam = scenario.camera;
   std::ostringstream x;
-  x << "<mujoco model=\"depot\">\n<compiler angle=\"radian\"/>\n<option timestep=\"0.002\"/>\n";
+  x << "<mujoco model=\"depot\">\n<compiler angle=\"radian\"/>\n<option timestep=\"0.004\"/>\n";
   x << "<visual>\n<global offwidth=\"" << cam.width << "\" offheight=\"" << cam.height << "\"/>\n"
-    << "<quality offsamples=\"0\" shadowsize=\"" << (scenario.shadows ? 2048 : 0) << "\"/>\n"
+    << "<quality offsamples=\"0\" numslices=\"16\" numstacks=\"8\" numquads=\"1\" shadowsize=\""
+    << (scenario.shadows ? 2048 : 0) << "\"/>\n"
     << "<headlight ambient=\"0.32 0.32 0.32\" diffuse=\"0 0 0\" specular=\"0 0 0\"/>\n"
     << "<map znear=\"0.005\" zfar=\"3\"/>\n</visual>\n";
   x << "<statistic extent=\"10\" center=\"0 0 1\"/>\n";
@@ -193,6 +194,8 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes, con
   }
 
   // Animated actors: one mocap body per part.
+  std::vector<std::pair<std::string, std::string>> plate_welds;  // plate body, mocap target
+  std::vector<std::string> pending_plates;
   for (const ActorSpec& a : scenario.actors) {
     if (!is_living_actor(a.type)) continue;
     for (const auto& p : a.path)
@@ -223,14 +226,30 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes, con
       g.shape = part.shape;
       g.size = part.size;
       g.material = part.material;
-      g.visible = !part.pusher;
-      g.contype = part.pusher ? kCollidePusher : 0;
+      g.contype = 0;
       g.conaffinity = 0;
       x << "<body name=\"" << body << "\" mocap=\"true\" pos=\"" << vec(poses[i].translation()) << "\" quat=\""
         << quat(poses[i].linear()) << "\">\n";
-      write_geom(x, g);
+      if (!part.pusher) write_geom(x, g);
       x << "</body>\n";
+      if (part.pusher) {
+        // The push plate is a free body welded to its mocap target: it has a
+        // real velocity, so contacts push chairs and carts instead of the
+        // plate tunnelling into them.
+        const std::string plate = body + "_plate";
+        plate_welds.emplace_back(plate, body);
+        g.visible = false;
+        g.contype = kCollidePusher;
+        g.density = 300.0;
+        x << "<body name=\"" << plate << "\" pos=\"" << vec(poses[i].translation()) << "\" quat=\""
+          << quat(poses[i].linear()) << "\">\n<freejoint/>\n";
+        write_geom(x, g);
+        x << "</body>\n";
+        pending_plates.push_back(plate);
+      }
     }
+    for (auto& plate : pending_plates) inst.bodies.push_back(plate);
+    pending_plates.clear();
     model.actors.push_back(std::move(actor));
   }
 
@@ -238,7 +257,14 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes, con
   const double fovy = 2.0 * std::atan(cam.height / 2.0 / cam.f) * 180.0 / M_PI;
   x << "<body name=\"" << model.camera_body << "\" mocap=\"true\" pos=\"0 0 1\">\n<camera name=\""
     << model.camera_name << "\" fovy=\"" << num(fovy) << "\"/>\n</body>\n";
-  x << "</worldbody>\n</mujoco>\n";
+  x << "</worldbody>\n";
+  if (!plate_welds.empty()) {
+    x << "<equality>\n";
+    for (const auto& [plate, target] : plate_welds)
+      x << "<weld body1=\"" << plate << "\" body2=\"" << target << "\" solref=\"0.02 1\"/>\n";
+    x << "</equality>\n";
+  }
+  x << "</mujoco>\n";
   model.xml = x.str();
   return model;
 }

@@ -1,20 +1,26 @@
 #include "sim/sensor/kinect_model.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "common/rng.h"
 
 namespace depot::sim {
+
 namespace {
 
-// A cheap approximately normal variate: the sum of four uniform 16-bit lanes
-// of one 64-bit draw (Irwin-Hall), scaled to unit variance.
-inline double fast_normal(Rng& rng) {
-  uint64_t r = rng.next_u64();
-  double s = static_cast<double>(r & 0xffff) + static_cast<double>((r >> 16) & 0xffff) +
-             static_cast<double>((r >> 32) & 0xffff) + static_cast<double>(r >> 48);
-  // Sum of 4 U(0, 65536): mean 131070, sd 65536 * sqrt(4/12).
-  return (s - 131070.0) / 37837.2;
+// Gaussian noise of unit-ish sigma as int8 (scaled by 16), drawn once; each
+// image row reads it at a fresh random offset, so noise differs per row and
+// frame at the cost of one table lookup per pixel.
+const std::vector<int8_t>& noise_table() {
+  static const std::vector<int8_t> table = [] {
+    std::vector<int8_t> t(1 << 20);
+    Rng rng(0x6e015e);
+    for (auto& v : t) v = static_cast<int8_t>(std::clamp(std::lround(16.0 * rng.normal()), -127L, 127L));
+    return t;
+  }();
+  return table;
 }
 
 }  // namespace
@@ -24,6 +30,9 @@ cv::Mat apply_depth_model(const cv::Mat& depth, const SensorSpec& sensor, double
   Rng rng(seed);
   const double fb = focal * sensor.baseline;  // disparity (px) = fb / z
   const int w = depth.cols;
+  // Noise and quantisation are the sensor's, specified in pixels of a
+  // 640-wide image: keep them metric when rendering at another size.
+  const double fb_sensor = fb * 640.0 / w;
   for (int y = 0; y < depth.rows; ++y) {
     const float* in = depth.ptr<float>(y);
     float* o = out.ptr<float>(y);
@@ -32,6 +41,9 @@ cv::Mat apply_depth_model(const cv::Mat& depth, const SensorSpec& sensor, double
     // j - x < fb (1/z_j - 1/z_x), i.e. fb/z_j - j > fb/z_x - x. Scanning right
     // to left keeps the running maximum of fb/z_j - j.
     double best = -1e30;
+    size_t offset = rng.next_u64() & (noise_table().size() - 1);
+    if (offset + w > noise_table().size()) offset = noise_table().size() - w;
+    const int8_t* noise = noise_table().data() + offset;
     for (int x = w - 1; x >= 0; --x) {
       const double z = in[x];
       if (z <= 0.0) continue;
@@ -43,9 +55,9 @@ cv::Mat apply_depth_model(const cv::Mat& depth, const SensorSpec& sensor, double
         o[x] = static_cast<float>(z);
         continue;
       }
-      double disparity = fb / z + sensor.disparity_noise * fast_normal(rng);
+      double disparity = fb_sensor / z + sensor.disparity_noise * (noise[x] / 16.0);
       if (sensor.disparity_step > 0) disparity = std::round(disparity / sensor.disparity_step) * sensor.disparity_step;
-      if (disparity > 0) o[x] = static_cast<float>(fb / disparity);
+      if (disparity > 0) o[x] = static_cast<float>(fb_sensor / disparity);
     }
   }
   return out;
@@ -53,11 +65,20 @@ cv::Mat apply_depth_model(const cv::Mat& depth, const SensorSpec& sensor, double
 
 void apply_rgb_noise(cv::Mat& bgr, double sigma, uint64_t seed) {
   if (sigma <= 0) return;
+  const auto& table = noise_table();
+  const size_t mask = table.size() - 1;
   Rng rng(seed);
+  const int scale = static_cast<int>(std::lround(sigma * 16.0));  // fixed point, /256
+  const int n = bgr.cols * bgr.channels();
   for (int y = 0; y < bgr.rows; ++y) {
     uchar* p = bgr.ptr<uchar>(y);
-    for (int i = 0; i < bgr.cols * bgr.channels(); ++i)
-      p[i] = cv::saturate_cast<uchar>(p[i] + sigma * fast_normal(rng));
+    size_t offset = rng.next_u64() & mask;
+    if (offset + n > table.size()) offset = table.size() - n;
+    const int8_t* noise = table.data() + offset;
+    for (int i = 0; i < n; ++i) {
+      const int v = p[i] + ((noise[i] * scale + (1 << 7)) >> 8);
+      p[i] = static_cast<uchar>(v < 0 ? 0 : v > 255 ? 255 : v);
+    }
   }
 }
 

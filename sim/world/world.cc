@@ -80,10 +80,15 @@ World::World(SceneModel scene) : scene_(std::move(scene)) {
       int b = name == "world" ? 0 : mj_name2id(model_, mjOBJ_BODY, name.c_str());
       if (b < 0) fail("scene", "body '" + name + "' missing from compiled model");
       instance_bodies_[i].push_back(b);
-      if (inst.actor >= 0) actor_mocap_[inst.actor].push_back(model_->body_mocapid[b]);
+      if (inst.actor >= 0 && model_->body_mocapid[b] >= 0) actor_mocap_[inst.actor].push_back(model_->body_mocapid[b]);
     }
   }
+  // Let pushables settle on the floor before time starts, so contact
+  // settling is not mistaken for motion in the first frames.
   pose_actors(0.0);
+  for (int i = 0; i < 250; ++i) mj_step(model_, data_);
+  mju_zero(data_->qvel, model_->nv);
+  data_->time = 0.0;
   mj_forward(model_, data_);
 }
 

@@ -27,6 +27,7 @@ struct RenderArgs {
   bool yolo = false;
   bool quiet = false;
   int writers = 2;
+  int width = 0;
 };
 
 void run_render(const RenderArgs& a, const CLI::App& cmd) {
@@ -40,6 +41,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
   if (cmd.count("--frames")) r.frames = a.frames;
   if (cmd.count("--seed")) r.seed = a.seed;
   if (cmd.count("--load")) r.dynamic_load = a.load;
+  if (cmd.count("--width")) r.width = a.width;
   r.ideal = a.ideal;
   r.progress = !a.quiet;
   sim::RenderSummary s = sim::render_dataset(scenario, r);
@@ -79,6 +81,8 @@ void register_sim_commands(CLI::App& app) {
   render->add_option("--load", args->load, "Dynamic load factor: number, size and speed of actors (0..4)")
       ->check(CLI::Range(0.0, 4.0));
   render->add_option("--gl", args->gl, "Off-screen GL backend")->check(CLI::IsMember({"osmesa", "egl"}));
+  render->add_option("--width", args->width, "Image width; height and intrinsics scale with it")
+      ->check(CLI::Range(16, 4096));
   render->add_flag("--ideal", args->ideal, "No sensor model: exact depth and colour");
   render->add_flag("--overwrite", args->overwrite, "Replace an existing output folder");
   render->add_flag("--yolo", args->yolo, "Also export a YOLO training set (yolo/images, yolo/labels, data.yaml)");

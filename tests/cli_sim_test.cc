@@ -1,0 +1,121 @@
+// The `depot sim` command line: bad input gives one clear error line, a
+// non-zero exit and no half-written dataset; EGL renders like OSMesa.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "tests/support/dataset_reader.h"
+#include "tests/support/render_helpers.h"
+
+namespace fs = std::filesystem;
+
+namespace depot::test {
+namespace {
+
+struct Result {
+  int code;
+  std::string output;
+};
+
+Result depot(const std::string& args) {
+  Result r;
+  r.code = run_command(depot_binary() + " " + args, &r.output);
+  return r;
+}
+
+std::string write_yaml(const std::string& tag, const std::string& text) {
+  std::string path = temp_path(tag) + ".yaml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string scene_lines() {
+  return std::string("scene: ") + DEPOT_SOURCE_DIR + "/scenes/depot.yaml\nclasses: " + DEPOT_SOURCE_DIR +
+         "/scenes/classes.yaml\n";
+}
+
+// One line, starting "depot: error:", containing `needle`; no output left.
+void expect_clean_failure(const std::string& args, const std::string& out, const std::string& needle) {
+  Result r = depot(args + " -o " + out + " -q");
+  EXPECT_NE(r.code, 0) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_EQ(r.output.rfind("depot: error: ", 0), 0u) << r.output;
+  EXPECT_NE(r.output.find(needle), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out)) << "no output on failure";
+  for (const auto& e : fs::directory_iterator(fs::path(out).parent_path()))
+    EXPECT_EQ(e.path().string().find(fs::path(out).filename().string() + ".partial"), std::string::npos);
+}
+
+TEST(CliSim, BrokenYamlNamesFileAndLine) {
+  std::string yaml = write_yaml("broken", "name: x\nmotion: {type: xyz\nactors: [\n");
+  expect_clean_failure("sim render " + yaml, temp_path("out"), yaml + ":");
+}
+
+TEST(CliSim, UnknownActorType) {
+  std::string yaml = write_yaml("actor", scene_lines() + "motion: {type: static}\nactors:\n  - {name: d, type: dragon}\n");
+  expect_clean_failure("sim render " + yaml, temp_path("out"), "unknown actor type 'dragon'");
+}
+
+TEST(CliSim, UnknownClassInTheClassTable) {
+  std::string classes = temp_path("classes") + ".yaml";
+  std::ofstream(classes) << "classes:\n  structure: {category: static}\n";
+  std::string yaml = write_yaml("class", std::string("scene: ") + DEPOT_SOURCE_DIR + "/scenes/depot.yaml\nclasses: " +
+                                             classes + "\nframes: 2\nmotion: {type: static}\n");
+  expect_clean_failure("sim render " + yaml + " --width 64", temp_path("out"), "unknown class 'rack'");
+}
+
+TEST(CliSim, MissingAssetFile) {
+  std::string yaml = write_yaml("asset", scene_lines() +
+                                            "motion: {type: file, file: /nonexistent/trajectory.txt}\n");
+  expect_clean_failure("sim render " + yaml, temp_path("out"), "/nonexistent/trajectory.txt");
+}
+
+TEST(CliSim, UnwritableOutput) {
+  std::string file = temp_path("plainfile");
+  std::ofstream(file) << "x";
+  Result r = depot("sim render depot_static --frames 2 --width 64 -q -o " + file + "/dataset");
+  EXPECT_NE(r.code, 0);
+  EXPECT_EQ(r.output.rfind("depot: error: ", 0), 0u) << r.output;
+  EXPECT_NE(r.output.find(file), std::string::npos) << r.output;
+}
+
+TEST(CliSim, OutOfRangeParameter) {
+  std::string yaml = write_yaml("range", scene_lines() + "motion: {type: xyz, amplitude: 500}\n");
+  expect_clean_failure("sim render " + yaml, temp_path("out"), "out of range");
+}
+
+TEST(CliSim, ListsShippedScenarios) {
+  Result r = depot("sim list");
+  EXPECT_EQ(r.code, 0) << r.output;
+  for (const char* name : {"depot_walking_xyz", "depot_walking_halfsphere", "depot_walking_rpy", "depot_walking_static",
+                           "depot_sitting_xyz", "depot_sitting_static", "depot_patrol", "depot_static"})
+    EXPECT_NE(r.output.find(name), std::string::npos) << name;
+}
+
+TEST(CliSim, EglRendersTheSameBytesAsOsMesa) {
+  std::string a = temp_path("osmesa"), b = temp_path("egl");
+  Result ra = depot("sim render depot_walking_xyz --frames 3 --width 160 --ideal -q --gl osmesa -o " + a);
+  ASSERT_EQ(ra.code, 0) << ra.output;
+  Result rb = depot("sim render depot_walking_xyz --frames 3 --width 160 --ideal -q --gl egl -o " + b);
+  ASSERT_EQ(rb.code, 0) << rb.output;
+  EXPECT_EQ(compare_trees(a, b), "");
+}
+
+TEST(CliSim, PreviewWritesAContactSheet) {
+  std::string data = temp_path("preview_data");
+  ASSERT_EQ(depot("sim render depot_sitting_static --frames 4 --width 160 -q -o " + data).code, 0);
+  std::string sheet = temp_path("sheet") + ".png";
+  Result r = depot("sim preview " + data + " -o " + sheet + " --rows 2");
+  ASSERT_EQ(r.code, 0) << r.output;
+  cv::Mat img = cv::imread(sheet);
+  ASSERT_FALSE(img.empty());
+  EXPECT_GE(img.cols, 3 * 320 - 1);  // RGB | depth | labels
+  Result bad = depot("sim preview /nonexistent -o " + sheet);
+  EXPECT_NE(bad.code, 0);
+}
+
+}  // namespace
+}  // namespace depot::test

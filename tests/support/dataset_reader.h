@@ -1,0 +1,61 @@
+#pragma once
+// Test-side reading of a written dataset: calibration, ground truth, images,
+// objects and per-frame object states, independent of the simulator's code
+// paths where that matters (so tests check the files, not the writer).
+#include <map>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "common/pose.h"
+#include "common/tum_io.h"
+
+namespace depot::test {
+
+struct Calibration {
+  int width = 0, height = 0;
+  double fx = 0, fy = 0, cx = 0, cy = 0, depth_factor = 0;
+};
+
+struct ObjectInfo {
+  int id = 0;
+  std::string name, class_name, category, kind;
+  Pose pose = Pose::Identity();
+  Eigen::AlignedBox3d extent;
+};
+
+struct ObjectPose {
+  Pose pose = Pose::Identity();
+  bool moving = false;
+};
+
+struct Dataset {
+  std::string root;
+  Calibration calibration;
+  std::vector<Association> frames;
+  std::vector<StampedPose> groundtruth;
+  std::vector<StampedFile> labels;
+  std::map<int, ObjectInfo> objects;
+  // per frame index: id -> pose/moving
+  std::vector<std::map<int, ObjectPose>> object_poses;
+
+  cv::Mat depth_metres(size_t frame) const;  // CV_32F
+  cv::Mat labels_image(size_t frame) const;  // CV_16U
+  cv::Mat rgb(size_t frame) const;
+  const ObjectInfo& object(const std::string& name) const;
+};
+
+Dataset read_dataset(const std::string& root);
+
+// A unique empty temp folder path (not created).
+std::string temp_path(const std::string& tag);
+
+// Runs a shell command, returning exit code; stdout/stderr captured.
+int run_command(const std::string& command, std::string* output);
+
+// Byte comparison of two folder trees; returns "" when identical, else the
+// first difference.
+std::string compare_trees(const std::string& a, const std::string& b);
+
+}  // namespace depot::test

@@ -1,0 +1,27 @@
+#pragma once
+// Renders small real datasets in-process for the tests (OSMesa).
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace depot::test {
+
+struct SmallRender {
+  SmallRender(std::string scenario_, int frames_, int width_, bool ideal_, std::optional<uint64_t> seed_ = {},
+              bool yolo_ = false)
+      : scenario(std::move(scenario_)), frames(frames_), width(width_), ideal(ideal_), seed(seed_), yolo(yolo_) {}
+  std::string scenario;  // shipped scenario name or YAML path
+  int frames;
+  int width;
+  bool ideal;
+  std::optional<uint64_t> seed;
+  bool yolo;
+};
+
+// Renders and returns the dataset folder.
+std::string render_small(const SmallRender& request);
+
+std::string scenario_path(const std::string& name);
+std::string depot_binary();
+
+}  // namespace depot::test
