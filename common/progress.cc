@@ -38,8 +38,8 @@ void Progress::update(size_t done, const std::string& detail) {
     int decile = static_cast<int>(frac * 10.0);
     if (decile == last_decile_) return;
     last_decile_ = decile;
-    std::fprintf(stderr, "%s %3d%% %zu/%zu %5.1f/s %s\n", label_.c_str(), decile * 10, done,
-                 total_, rate, detail.c_str());
+    std::fprintf(stderr, "%s %3d%% %zu/%zu %5.1f/s %s\n", label_.c_str(), decile * 10, done, total_,
+                 rate, detail.c_str());
   }
   std::fflush(stderr);
 }

@@ -44,11 +44,14 @@ TEST(TumIo, ErrorsNameFileAndLine) {
   EXPECT_THROW(read_tum_trajectory(write_temp("short.txt", "1.0 0 0 0\n")), Error);
   EXPECT_THROW(read_tum_trajectory(write_temp("empty.txt", "# nothing\n")), Error);
   EXPECT_THROW(read_tum_trajectory("/nonexistent/file.txt"), Error);
-  EXPECT_THROW(read_tum_trajectory(write_temp("order.txt", "2.0 0 0 0 0 0 0 1\n1.0 0 0 0 0 0 0 1\n")), Error);
+  EXPECT_THROW(
+      read_tum_trajectory(write_temp("order.txt", "2.0 0 0 0 0 0 0 1\n1.0 0 0 0 0 0 0 1\n")),
+      Error);
 }
 
 TEST(TumIo, DetectsFileKinds) {
-  EXPECT_EQ(detect_tum_file_kind(write_temp("k1.txt", "1.0 0 0 0 0 0 0 1\n")), TumFileKind::kTrajectory);
+  EXPECT_EQ(detect_tum_file_kind(write_temp("k1.txt", "1.0 0 0 0 0 0 0 1\n")),
+            TumFileKind::kTrajectory);
   EXPECT_EQ(detect_tum_file_kind(write_temp("k2.txt", "1.0 rgb/1.png\n")), TumFileKind::kFileList);
   EXPECT_EQ(detect_tum_file_kind(write_temp("k3.txt", "1.0 rgb/1.png 1.01 depth/1.png\n")),
             TumFileKind::kAssociation);

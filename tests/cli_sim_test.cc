@@ -33,12 +33,13 @@ std::string write_yaml(const std::string& tag, const std::string& text) {
 }
 
 std::string scene_lines() {
-  return std::string("scene: ") + DEPOT_SOURCE_DIR + "/scenes/depot.yaml\nclasses: " + DEPOT_SOURCE_DIR +
-         "/scenes/classes.yaml\n";
+  return std::string("scene: ") + DEPOT_SOURCE_DIR +
+         "/scenes/depot.yaml\nclasses: " + DEPOT_SOURCE_DIR + "/scenes/classes.yaml\n";
 }
 
 // One line, starting "depot: error:", containing `needle`; no output left.
-void expect_clean_failure(const std::string& args, const std::string& out, const std::string& needle) {
+void expect_clean_failure(const std::string& args, const std::string& out,
+                          const std::string& needle) {
   Result r = depot(args + " -o " + out + " -q");
   EXPECT_NE(r.code, 0) << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
@@ -46,7 +47,8 @@ void expect_clean_failure(const std::string& args, const std::string& out, const
   EXPECT_NE(r.output.find(needle), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out)) << "no output on failure";
   for (const auto& e : fs::directory_iterator(fs::path(out).parent_path()))
-    EXPECT_EQ(e.path().string().find(fs::path(out).filename().string() + ".partial"), std::string::npos);
+    EXPECT_EQ(e.path().string().find(fs::path(out).filename().string() + ".partial"),
+              std::string::npos);
 }
 
 TEST(CliSim, BrokenYamlNamesFileAndLine) {
@@ -55,21 +57,24 @@ TEST(CliSim, BrokenYamlNamesFileAndLine) {
 }
 
 TEST(CliSim, UnknownActorType) {
-  std::string yaml = write_yaml("actor", scene_lines() + "motion: {type: static}\nactors:\n  - {name: d, type: dragon}\n");
+  std::string yaml = write_yaml(
+      "actor", scene_lines() + "motion: {type: static}\nactors:\n  - {name: d, type: dragon}\n");
   expect_clean_failure("sim render " + yaml, temp_path("out"), "unknown actor type 'dragon'");
 }
 
 TEST(CliSim, UnknownClassInTheClassTable) {
   std::string classes = temp_path("classes") + ".yaml";
   std::ofstream(classes) << "classes:\n  structure: {category: static}\n";
-  std::string yaml = write_yaml("class", std::string("scene: ") + DEPOT_SOURCE_DIR + "/scenes/depot.yaml\nclasses: " +
-                                             classes + "\nframes: 2\nmotion: {type: static}\n");
-  expect_clean_failure("sim render " + yaml + " --width 64", temp_path("out"), "unknown class 'rack'");
+  std::string yaml = write_yaml("class", std::string("scene: ") + DEPOT_SOURCE_DIR +
+                                             "/scenes/depot.yaml\nclasses: " + classes +
+                                             "\nframes: 2\nmotion: {type: static}\n");
+  expect_clean_failure("sim render " + yaml + " --width 64", temp_path("out"),
+                       "unknown class 'rack'");
 }
 
 TEST(CliSim, MissingAssetFile) {
-  std::string yaml = write_yaml("asset", scene_lines() +
-                                            "motion: {type: file, file: /nonexistent/trajectory.txt}\n");
+  std::string yaml = write_yaml(
+      "asset", scene_lines() + "motion: {type: file, file: /nonexistent/trajectory.txt}\n");
   expect_clean_failure("sim render " + yaml, temp_path("out"), "/nonexistent/trajectory.txt");
 }
 
@@ -90,16 +95,19 @@ TEST(CliSim, OutOfRangeParameter) {
 TEST(CliSim, ListsShippedScenarios) {
   Result r = depot("sim list");
   EXPECT_EQ(r.code, 0) << r.output;
-  for (const char* name : {"depot_walking_xyz", "depot_walking_halfsphere", "depot_walking_rpy", "depot_walking_static",
-                           "depot_sitting_xyz", "depot_sitting_static", "depot_patrol", "depot_static"})
+  for (const char* name : {"depot_walking_xyz", "depot_walking_halfsphere", "depot_walking_rpy",
+                           "depot_walking_static", "depot_sitting_xyz", "depot_sitting_static",
+                           "depot_patrol", "depot_static"})
     EXPECT_NE(r.output.find(name), std::string::npos) << name;
 }
 
 TEST(CliSim, EglRendersTheSameBytesAsOsMesa) {
   std::string a = temp_path("osmesa"), b = temp_path("egl");
-  Result ra = depot("sim render depot_walking_xyz --frames 3 --width 160 --ideal -q --gl osmesa -o " + a);
+  Result ra =
+      depot("sim render depot_walking_xyz --frames 3 --width 160 --ideal -q --gl osmesa -o " + a);
   ASSERT_EQ(ra.code, 0) << ra.output;
-  Result rb = depot("sim render depot_walking_xyz --frames 3 --width 160 --ideal -q --gl egl -o " + b);
+  Result rb =
+      depot("sim render depot_walking_xyz --frames 3 --width 160 --ideal -q --gl egl -o " + b);
   ASSERT_EQ(rb.code, 0) << rb.output;
   EXPECT_EQ(compare_trees(a, b), "");
 }

@@ -20,8 +20,9 @@ const std::string kShared = DEPOT_SHARED_DATA;
 
 TEST(SimDataset, WritesAStandardTumFolder) {
   std::string root = render_small({"depot_walking_xyz", 8, 160, false});
-  for (const char* f : {"rgb.txt", "depth.txt", "associations.txt", "groundtruth.txt", "calibration.yaml",
-                        "labels.txt", "objects.json", "object_poses.txt", "boxes.txt", "classes.txt"})
+  for (const char* f :
+       {"rgb.txt", "depth.txt", "associations.txt", "groundtruth.txt", "calibration.yaml",
+        "labels.txt", "objects.json", "object_poses.txt", "boxes.txt", "classes.txt"})
     EXPECT_TRUE(fs::is_regular_file(fs::path(root) / f)) << f;
   Dataset d = read_dataset(root);
   ASSERT_EQ(d.frames.size(), 8u);
@@ -70,7 +71,8 @@ TEST(SimDataset, SensorModelDropsFarDepthAndAddsNoise) {
   ASSERT_GT(count_near, 100);
   ASSERT_GT(count_far, 100);
   EXPECT_GT(near_changed, near_total / 2);
-  const double sigma_near = std::sqrt(sum_sq_near / count_near), sigma_far = std::sqrt(sum_sq_far / count_far);
+  const double sigma_near = std::sqrt(sum_sq_near / count_near),
+               sigma_far = std::sqrt(sum_sq_far / count_far);
   // Noise grows with depth squared: ~(3.8 / 1.85)^2 = 4x between the bands.
   EXPECT_GT(sigma_far / sigma_near, 2.5) << sigma_near << " " << sigma_far;
   EXPECT_LT(sigma_near, 0.01);

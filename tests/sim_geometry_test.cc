@@ -19,14 +19,16 @@ namespace {
 double depth_at(const cv::Mat& d, double u, double v) {
   int x = static_cast<int>(std::floor(u)), y = static_cast<int>(std::floor(v));
   if (x < 0 || y < 0 || x + 1 >= d.cols || y + 1 >= d.rows) return NAN;
-  float z[4] = {d.at<float>(y, x), d.at<float>(y, x + 1), d.at<float>(y + 1, x), d.at<float>(y + 1, x + 1)};
+  float z[4] = {d.at<float>(y, x), d.at<float>(y, x + 1), d.at<float>(y + 1, x),
+                d.at<float>(y + 1, x + 1)};
   float lo = *std::min_element(z, z + 4), hi = *std::max_element(z, z + 4);
   if (lo <= 0 || hi - lo > 0.02) return NAN;
   double a = u - x, b = v - y;
   return (1 - a) * (1 - b) * z[0] + a * (1 - b) * z[1] + (1 - a) * b * z[2] + a * b * z[3];
 }
 
-std::vector<double> reprojection_errors(const Dataset& d, size_t i, size_t j, bool static_only, int id_filter = -1) {
+std::vector<double> reprojection_errors(const Dataset& d, size_t i, size_t j, bool static_only,
+                                        int id_filter = -1) {
   const Calibration& c = d.calibration;
   cv::Mat di = d.depth_metres(i), dj = d.depth_metres(j);
   cv::Mat li = d.labels_image(i), lj = d.labels_image(j);

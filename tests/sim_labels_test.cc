@@ -17,7 +17,8 @@ namespace {
 
 // Fraction of an instance's labelled pixels whose back-projected 3-D point
 // lies inside the instance's extent (inflated by `margin`) at its pose.
-double fraction_inside(const Dataset& d, size_t frame, int id, const Pose& pose, double margin, int* count) {
+double fraction_inside(const Dataset& d, size_t frame, int id, const Pose& pose, double margin,
+                       int* count) {
   const Calibration& c = d.calibration;
   cv::Mat depth = d.depth_metres(frame), labels = d.labels_image(frame);
   Eigen::AlignedBox3d box = d.objects.at(id).extent;
@@ -30,7 +31,8 @@ double fraction_inside(const Dataset& d, size_t frame, int id, const Pose& pose,
       if (labels.at<uint16_t>(v, u) != id) continue;
       const double z = depth.at<float>(v, u);
       if (z <= 0) continue;
-      Eigen::Vector3d p = object_from_camera * Eigen::Vector3d((u - c.cx) * z / c.fx, (v - c.cy) * z / c.fy, z);
+      Eigen::Vector3d p =
+          object_from_camera * Eigen::Vector3d((u - c.cx) * z / c.fx, (v - c.cy) * z / c.fy, z);
       ++total;
       inside += box.contains(p);
     }
@@ -65,12 +67,15 @@ TEST(SimLabels, MasksLieInsideTheirObjectsAtTheirPoses) {
 TEST(SimLabels, MovingFlagsMatchMotionAndPushedChairMoves) {
   std::string root = render_small({"depot_walking_xyz", 100, 160, true});
   Dataset d = read_dataset(root);
-  const int walker = d.object("walker_1").id, chair_a = d.object("chair_a").id, pushed = d.object("chair_pushed").id;
+  const int walker = d.object("walker_1").id, chair_a = d.object("chair_a").id,
+            pushed = d.object("chair_pushed").id;
   int walker_moving = 0, pushed_moving = 0;
   for (size_t f = 0; f < d.frames.size(); ++f) {
     walker_moving += d.object_poses[f].at(walker).moving;
     EXPECT_FALSE(d.object_poses[f].at(chair_a).moving) << "frame " << f;
-    EXPECT_LT(translation_between(d.object_poses[f].at(chair_a).pose, d.object_poses[0].at(chair_a).pose), 0.001);
+    EXPECT_LT(
+        translation_between(d.object_poses[f].at(chair_a).pose, d.object_poses[0].at(chair_a).pose),
+        0.001);
     const ObjectPose& p = d.object_poses[f].at(pushed);
     pushed_moving += p.moving;
     if (f > 0) {
@@ -88,8 +93,8 @@ TEST(SimLabels, MovingFlagsMatchMotionAndPushedChairMoves) {
   }
   EXPECT_EQ(walker_moving, static_cast<int>(d.frames.size()));
   EXPECT_GT(pushed_moving, 20);
-  const double pushed_distance =
-      translation_between(d.object_poses.back().at(pushed).pose, d.object_poses.front().at(pushed).pose);
+  const double pushed_distance = translation_between(d.object_poses.back().at(pushed).pose,
+                                                     d.object_poses.front().at(pushed).pose);
   EXPECT_GT(pushed_distance, 0.5) << "the pushed chair must really travel";
   // Pushed, not knocked over: it stays upright.
   const Eigen::Vector3d up = d.object_poses.back().at(pushed).pose.linear().col(2);
@@ -103,7 +108,9 @@ TEST(SimLabels, SittingPeopleMoveSlightlyInPlace) {
   int moving = 0;
   for (size_t f = 0; f < d.frames.size(); ++f) {
     moving += d.object_poses[f].at(sitter).moving;
-    EXPECT_LT(translation_between(d.object_poses[f].at(sitter).pose, d.object_poses[0].at(sitter).pose), 1e-9);
+    EXPECT_LT(
+        translation_between(d.object_poses[f].at(sitter).pose, d.object_poses[0].at(sitter).pose),
+        1e-9);
   }
   EXPECT_GT(moving, 30) << "head and arms move, so the person is flagged moving";
 }

@@ -14,11 +14,11 @@ namespace depot::sim {
 enum class Shape { kBox, kSphere, kCapsule, kEllipsoid, kCylinder };
 
 struct BodyPart {
-  std::string name;       // unique within the actor
+  std::string name;  // unique within the actor
   Shape shape = Shape::kBox;
   Eigen::Vector3d size{0.1, 0.1, 0.1};  // MuJoCo geom size (half extents; capsule: r, half-length)
-  std::string material;   // scene material name
-  bool pusher = false;    // invisible collision plate that pushes chairs/carts
+  std::string material;                 // scene material name
+  bool pusher = false;                  // invisible collision plate that pushes chairs/carts
 };
 
 class Actor {

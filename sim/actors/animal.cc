@@ -35,15 +35,19 @@ QuadrupedActor::QuadrupedActor(const ActorSpec& spec) {
   const double s = scale_;
   parts_.push_back({"body", spec.type == "pig" ? Shape::kEllipsoid : Shape::kCapsule,
                     spec.type == "pig"
-                        ? Eigen::Vector3d(b_.body_half_length + b_.body_radius, b_.body_radius * 0.9, b_.body_radius) * s
+                        ? Eigen::Vector3d(b_.body_half_length + b_.body_radius,
+                                          b_.body_radius * 0.9, b_.body_radius) *
+                              s
                         : Eigen::Vector3d(b_.body_radius, b_.body_half_length, 0) * s,
                     fur, false});
   parts_.push_back({"head", Shape::kSphere, Eigen::Vector3d(b_.head_radius, 0, 0) * s, fur, false});
-  parts_.push_back({"snout", Shape::kBox,
-                    Eigen::Vector3d(0.6, 0.45, 0.4) * b_.head_radius * s, "snout", false});
+  parts_.push_back(
+      {"snout", Shape::kBox, Eigen::Vector3d(0.6, 0.45, 0.4) * b_.head_radius * s, "snout", false});
   for (const char* leg : {"leg_fl", "leg_fr", "leg_rl", "leg_rr"})
-    parts_.push_back({leg, Shape::kCapsule, Eigen::Vector3d(b_.leg_radius, b_.leg_length / 2, 0) * s, fur, false});
-  parts_.push_back({"tail", Shape::kCapsule, Eigen::Vector3d(b_.leg_radius * 0.6, b_.tail_length / 2, 0) * s, fur, false});
+    parts_.push_back({leg, Shape::kCapsule,
+                      Eigen::Vector3d(b_.leg_radius, b_.leg_length / 2, 0) * s, fur, false});
+  parts_.push_back({"tail", Shape::kCapsule,
+                    Eigen::Vector3d(b_.leg_radius * 0.6, b_.tail_length / 2, 0) * s, fur, false});
 }
 
 double QuadrupedActor::distance(double t) const {
@@ -59,8 +63,9 @@ Eigen::AlignedBox3d QuadrupedActor::local_extent() const {
   const double s = scale_;
   const double front = b_.body_half_length + b_.body_radius + 2.5 * b_.head_radius;
   const double back = b_.body_half_length + b_.body_radius + b_.tail_length;
-  return Eigen::AlignedBox3d(Eigen::Vector3d(-back - 0.05, -0.3, 0.0) * s,
-                             Eigen::Vector3d(front + 0.05, 0.3, b_.body_height + 2.5 * b_.head_radius + 0.1) * s);
+  return Eigen::AlignedBox3d(
+      Eigen::Vector3d(-back - 0.05, -0.3, 0.0) * s,
+      Eigen::Vector3d(front + 0.05, 0.3, b_.body_height + 2.5 * b_.head_radius + 0.1) * s);
 }
 
 void QuadrupedActor::pose_parts(double t, std::vector<Pose>& out) const {
@@ -73,23 +78,29 @@ void QuadrupedActor::pose_parts(double t, std::vector<Pose>& out) const {
   const Eigen::Matrix3d r_body = rot_y(deg(2.0) * std::sin(2.0 * phi));
   std::vector<Pose> local(parts_.size());
   // Capsules lie along their z axis: turn the body capsule along x.
-  local[0] = make_pose(Eigen::Matrix3d(r_body * (class_name_ == "pig" ? Eigen::Matrix3d::Identity() : rot_y(M_PI / 2))),
+  local[0] = make_pose(Eigen::Matrix3d(r_body * (class_name_ == "pig" ? Eigen::Matrix3d::Identity()
+                                                                      : rot_y(M_PI / 2))),
                        Eigen::Vector3d(0, 0, body_z));
   const double hx = (b_.body_half_length + b_.body_radius * 0.6) * s;
-  const Eigen::Vector3d head(hx + b_.head_radius * s, 0, body_z + 1.3 * b_.head_radius * s + 0.01 * std::sin(phi));
+  const Eigen::Vector3d head(hx + b_.head_radius * s, 0,
+                             body_z + 1.3 * b_.head_radius * s + 0.01 * std::sin(phi));
   local[1] = make_pose(rot_z(deg(10.0) * std::sin(0.5 * phi)), head);
-  local[2] = make_pose(rot_z(deg(10.0) * std::sin(0.5 * phi)),
-                       head + Eigen::Vector3d(1.1 * b_.head_radius * s, 0, -0.25 * b_.head_radius * s));
+  local[2] =
+      make_pose(rot_z(deg(10.0) * std::sin(0.5 * phi)),
+                head + Eigen::Vector3d(1.1 * b_.head_radius * s, 0, -0.25 * b_.head_radius * s));
   // Trot: diagonal legs move together.
   const double lx = b_.body_half_length * s, ly = b_.body_radius * 0.6 * s;
-  const Eigen::Vector3d hips[4] = {{lx, ly, body_z}, {lx, -ly, body_z}, {-lx, ly, body_z}, {-lx, -ly, body_z}};
-  const double swing[4] = {amp * std::sin(phi), amp * std::sin(phi + M_PI), amp * std::sin(phi + M_PI),
-                           amp * std::sin(phi)};
+  const Eigen::Vector3d hips[4] = {
+      {lx, ly, body_z}, {lx, -ly, body_z}, {-lx, ly, body_z}, {-lx, -ly, body_z}};
+  const double swing[4] = {amp * std::sin(phi), amp * std::sin(phi + M_PI),
+                           amp * std::sin(phi + M_PI), amp * std::sin(phi)};
   for (int i = 0; i < 4; ++i)
     local[3 + i] = limb(hips[i], Eigen::Matrix3d::Identity(), swing[i], b_.leg_length * s);
-  const Eigen::Vector3d tail_root(-(b_.body_half_length + b_.body_radius * 0.8) * s, 0, body_z + 0.3 * b_.body_radius * s);
+  const Eigen::Vector3d tail_root(-(b_.body_half_length + b_.body_radius * 0.8) * s, 0,
+                                  body_z + 0.3 * b_.body_radius * s);
   const Eigen::Matrix3d r_tail = rot_z(deg(25.0) * std::sin(2.0 * phi + 0.5)) * rot_y(deg(-50.0));
-  local[7] = make_pose(r_tail, tail_root + r_tail * Eigen::Vector3d(0, 0, 0.5 * b_.tail_length * s));
+  local[7] =
+      make_pose(r_tail, tail_root + r_tail * Eigen::Vector3d(0, 0, 0.5 * b_.tail_length * s));
   out.resize(parts_.size());
   for (size_t i = 0; i < parts_.size(); ++i) out[i] = root * local[i];
 }
@@ -109,11 +120,14 @@ BirdActor::BirdActor(const ActorSpec& spec) {
   path_ = Path2D(spec.path, spec.loop, 0.8);
   const double s = scale_;
   const std::string feathers = "feathers_" + std::to_string(rng.below(2));
-  parts_.push_back({"body", Shape::kEllipsoid, Eigen::Vector3d(0.11, 0.055, 0.055) * s, feathers, false});
+  parts_.push_back(
+      {"body", Shape::kEllipsoid, Eigen::Vector3d(0.11, 0.055, 0.055) * s, feathers, false});
   parts_.push_back({"head", Shape::kSphere, Eigen::Vector3d(0.04, 0, 0) * s, feathers, false});
   parts_.push_back({"beak", Shape::kBox, Eigen::Vector3d(0.025, 0.01, 0.008) * s, "beak", false});
-  parts_.push_back({"wing_l", Shape::kBox, Eigen::Vector3d(0.07, 0.13, 0.006) * s, feathers, false});
-  parts_.push_back({"wing_r", Shape::kBox, Eigen::Vector3d(0.07, 0.13, 0.006) * s, feathers, false});
+  parts_.push_back(
+      {"wing_l", Shape::kBox, Eigen::Vector3d(0.07, 0.13, 0.006) * s, feathers, false});
+  parts_.push_back(
+      {"wing_r", Shape::kBox, Eigen::Vector3d(0.07, 0.13, 0.006) * s, feathers, false});
   parts_.push_back({"tail", Shape::kBox, Eigen::Vector3d(0.07, 0.04, 0.004) * s, feathers, false});
 }
 
@@ -125,7 +139,8 @@ Pose BirdActor::root_pose(double t) const {
 
 Eigen::AlignedBox3d BirdActor::local_extent() const {
   const double s = scale_;
-  return Eigen::AlignedBox3d(Eigen::Vector3d(-0.3, -0.32, -0.2) * s, Eigen::Vector3d(0.3, 0.32, 0.2) * s);
+  return Eigen::AlignedBox3d(Eigen::Vector3d(-0.3, -0.32, -0.2) * s,
+                             Eigen::Vector3d(0.3, 0.32, 0.2) * s);
 }
 
 void BirdActor::pose_parts(double t, std::vector<Pose>& out) const {
@@ -139,7 +154,8 @@ void BirdActor::pose_parts(double t, std::vector<Pose>& out) const {
   for (int i = 0; i < 2; ++i) {
     const double side = i == 0 ? 1.0 : -1.0;
     const Eigen::Matrix3d r = rot_x(side * flap);
-    local[3 + i] = make_pose(r, Eigen::Vector3d(0, side * 0.045 * s, 0.02 * s) + r * Eigen::Vector3d(0, side * 0.13 * s, 0));
+    local[3 + i] = make_pose(r, Eigen::Vector3d(0, side * 0.045 * s, 0.02 * s) +
+                                    r * Eigen::Vector3d(0, side * 0.13 * s, 0));
   }
   local[5] = make_pose(rot_y(deg(10.0)), Eigen::Vector3d(-0.16, 0, 0.01) * s);
   out.resize(parts_.size());

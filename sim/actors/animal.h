@@ -15,8 +15,8 @@ class QuadrupedActor : public Actor {
 
  private:
   struct Build {
-    double body_half_length, body_radius, body_height, leg_length, leg_radius, head_radius,
-        stride, tail_length;
+    double body_half_length, body_radius, body_height, leg_length, leg_radius, head_radius, stride,
+        tail_length;
   };
   double distance(double t) const;
   Build b_{};

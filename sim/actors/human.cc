@@ -10,9 +10,20 @@ namespace depot::sim {
 namespace {
 
 enum Part {
-  kPelvis, kTorso, kHead, kHair,
-  kThighL, kShinL, kFootL, kThighR, kShinR, kFootR,
-  kUpperArmL, kForearmL, kUpperArmR, kForearmR,
+  kPelvis,
+  kTorso,
+  kHead,
+  kHair,
+  kThighL,
+  kShinL,
+  kFootL,
+  kThighR,
+  kShinR,
+  kFootR,
+  kUpperArmL,
+  kForearmL,
+  kUpperArmR,
+  kForearmR,
   kPusher
 };
 
@@ -90,7 +101,8 @@ Pose HumanActor::root_pose(double t) const {
 
 Eigen::AlignedBox3d HumanActor::local_extent() const {
   const double s = scale_;
-  return Eigen::AlignedBox3d(Eigen::Vector3d(-0.6, -0.5, 0.0) * s, Eigen::Vector3d(0.95, 0.5, 2.0) * s);
+  return Eigen::AlignedBox3d(Eigen::Vector3d(-0.6, -0.5, 0.0) * s,
+                             Eigen::Vector3d(0.95, 0.5, 2.0) * s);
 }
 
 void HumanActor::pose_parts(double t, std::vector<Pose>& out) const {
@@ -154,7 +166,8 @@ void HumanActor::pose_parts(double t, std::vector<Pose>& out) const {
     Eigen::Vector3d knee, ankle;
     local[kThighL + 3 * i] = limb(hip, r_pelvis, p.hip[i], kThigh * s, &knee);
     local[kShinL + 3 * i] = limb(knee, r_pelvis, p.hip[i] - p.knee[i], kShin * s, &ankle);
-    local[kFootL + 3 * i] = make_pose(r_pelvis, ankle + r_pelvis * Eigen::Vector3d(0.05 * s, 0, -0.035 * s));
+    local[kFootL + 3 * i] =
+        make_pose(r_pelvis, ankle + r_pelvis * Eigen::Vector3d(0.05 * s, 0, -0.035 * s));
   }
   const Eigen::Matrix3d r_torso = r_pelvis * rot_z(0.5 * p.torso_yaw) * rot_y(p.torso_pitch);
   local[kTorso] = make_pose(r_torso, pelvis + r_torso * Eigen::Vector3d(0, 0, 0.33 * s));
@@ -170,7 +183,8 @@ void HumanActor::pose_parts(double t, std::vector<Pose>& out) const {
   const Eigen::Vector3d head = neck + r_head * Eigen::Vector3d(0, 0, 0.12 * s);
   local[kHead] = make_pose(r_head, head);
   local[kHair] = make_pose(r_head, head + r_head * Eigen::Vector3d(-0.02 * s, 0, 0.045 * s));
-  if (mode_ == Mode::kPush) local[kPusher] = make_pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.42 * s, 0, 0.46 * s));
+  if (mode_ == Mode::kPush)
+    local[kPusher] = make_pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.42 * s, 0, 0.46 * s));
 
   out.resize(parts_.size());
   for (size_t i = 0; i < parts_.size(); ++i) out[i] = root * local[i];

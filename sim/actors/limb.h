@@ -7,10 +7,18 @@
 
 namespace depot::sim {
 
-inline Eigen::Matrix3d rot_x(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX()).matrix(); }
-inline Eigen::Matrix3d rot_y(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitY()).matrix(); }
-inline Eigen::Matrix3d rot_z(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()).matrix(); }
-inline double deg(double d) { return d * M_PI / 180.0; }
+inline Eigen::Matrix3d rot_x(double a) {
+  return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX()).matrix();
+}
+inline Eigen::Matrix3d rot_y(double a) {
+  return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitY()).matrix();
+}
+inline Eigen::Matrix3d rot_z(double a) {
+  return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()).matrix();
+}
+inline double deg(double d) {
+  return d * M_PI / 180.0;
+}
 
 // A limb of `length` hanging from `joint`, swung forward by `pitch` (rad,
 // 0 = straight down) within the plane given by the parent rotation. Returns

@@ -23,7 +23,8 @@ std::vector<Eigen::Vector2d> chaikin(const std::vector<Eigen::Vector2d>& in) {
 
 // Inserts points so no straight piece is longer than `step`, keeping corner
 // cutting local to `radius` around each corner.
-std::vector<Eigen::Vector2d> densify_corners(const std::vector<Eigen::Vector2d>& in, double radius) {
+std::vector<Eigen::Vector2d> densify_corners(const std::vector<Eigen::Vector2d>& in,
+                                             double radius) {
   std::vector<Eigen::Vector2d> out;
   for (size_t i = 0; i < in.size(); ++i) {
     const Eigen::Vector2d& a = in[i];
@@ -47,7 +48,8 @@ Path2D::Path2D(const std::vector<Eigen::Vector2d>& waypoints, bool closed, doubl
     // Out and back with a 0.4 m sideways offset on the way back.
     Eigen::Vector2d d = (waypoints.back() - waypoints.front()).normalized();
     Eigen::Vector2d side(-d.y(), d.x());
-    for (auto it = waypoints.rbegin(); it != waypoints.rend(); ++it) loop.push_back(*it + 0.4 * side);
+    for (auto it = waypoints.rbegin(); it != waypoints.rend(); ++it)
+      loop.push_back(*it + 0.4 * side);
   }
   if (loop.size() < 2) loop.push_back(loop.empty() ? Eigen::Vector2d::Zero() : loop[0]);
   std::vector<Eigen::Vector2d> pts = densify_corners(loop, corner_radius);

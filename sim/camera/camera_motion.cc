@@ -27,8 +27,8 @@ HandTremor::HandTremor(uint64_t seed, double scale) {
   for (int axis = 0; axis < 6; ++axis) {
     const double base = axis < 3 ? 0.0012 : deg(0.18);
     for (int k = 0; k < 3; ++k) {
-      waves_[axis].push_back({scale * base * rng.uniform(0.4, 1.0) / (k + 1), rng.uniform(0.3, 2.5) * (k + 1),
-                              rng.uniform(0.0, 2.0 * M_PI)});
+      waves_[axis].push_back({scale * base * rng.uniform(0.4, 1.0) / (k + 1),
+                              rng.uniform(0.3, 2.5) * (k + 1), rng.uniform(0.0, 2.0 * M_PI)});
     }
   }
 }
@@ -37,7 +37,8 @@ Pose HandTremor::at(double t) const {
   double v[6];
   for (int axis = 0; axis < 6; ++axis) {
     v[axis] = 0.0;
-    for (const auto& w : waves_[axis]) v[axis] += w.amplitude * std::sin(2.0 * M_PI * w.frequency * t + w.phase);
+    for (const auto& w : waves_[axis])
+      v[axis] += w.amplitude * std::sin(2.0 * M_PI * w.frequency * t + w.phase);
   }
   Eigen::Matrix3d r = rot_x(v[3]) * rot_y(v[4]) * rot_z(v[5]);
   return make_pose(r, Eigen::Vector3d(v[0], v[1], v[2]));
@@ -90,7 +91,8 @@ Pose CameraMotion::pose_relative(double dt) const {
     // Hand-held translation along the camera's three axes, about +-A.
     const double a = spec_.amplitude > 0 ? spec_.amplitude : 0.3;
     const double period = spec_.period > 0 ? spec_.period : 7.0;
-    Eigen::Vector3d offset(a * std::sin(w * dt / period), 0.7 * a * std::sin(w * dt / (1.23 * period) + 1.3),
+    Eigen::Vector3d offset(a * std::sin(w * dt / period),
+                           0.7 * a * std::sin(w * dt / (1.23 * period) + 1.3),
                            0.6 * a * std::sin(w * dt / (1.41 * period) + 2.1));
     return make_pose(base_rotation_, c + base_rotation_ * offset);
   }
@@ -123,7 +125,8 @@ Pose CameraMotion::pose_relative(double dt) const {
     // A robot-mounted camera: accelerates gently, follows the path at speed,
     // looking along its heading, slightly tilted down.
     const double ramp = 2.0;  // s to reach full speed
-    const double s = dt < ramp ? spec_.speed * dt * dt / (2.0 * ramp) : spec_.speed * (dt - 0.5 * ramp);
+    const double s =
+        dt < ramp ? spec_.speed * dt * dt / (2.0 * ramp) : spec_.speed * (dt - 0.5 * ramp);
     Eigen::Vector2d xy = path_.position(s);
     double heading = path_.heading(s);
     Eigen::Vector3d pos(xy.x(), xy.y(), spec_.height);

@@ -2,32 +2,33 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <map>
 
 namespace depot::sim {
 
 std::vector<InstanceBox> instance_boxes(const cv::Mat& instance, int min_pixels) {
-  std::map<uint16_t, InstanceBox> boxes;
+  // A flat table indexed by id: one pass, no per-pixel lookups.
+  std::vector<InstanceBox> boxes(65536);
+  uint16_t max_id = 0;
   for (int y = 0; y < instance.rows; ++y) {
     const uint16_t* row = instance.ptr<uint16_t>(y);
     for (int x = 0; x < instance.cols; ++x) {
       const uint16_t id = row[x];
       if (id == 0) continue;
-      auto [it, fresh] = boxes.try_emplace(id);
-      InstanceBox& b = it->second;
-      if (fresh) {
+      InstanceBox& b = boxes[id];
+      if (b.pixels == 0) {
         b = {id, x, y, x + 1, y + 1, 0};
+        max_id = std::max(max_id, id);
       } else {
         b.x1 = std::min(b.x1, x);
         b.x2 = std::max(b.x2, x + 1);
-        b.y2 = std::max(b.y2, y + 1);  // rows come in order, so y1 is the first
+        b.y2 = y + 1;  // rows come in order, so y1 is the first
       }
       ++b.pixels;
     }
   }
   std::vector<InstanceBox> out;
-  for (const auto& [id, b] : boxes)
-    if (b.pixels >= min_pixels) out.push_back(b);
+  for (int id = 1; id <= max_id; ++id)
+    if (boxes[id].pixels > 0 && boxes[id].pixels >= min_pixels) out.push_back(boxes[id]);
   return out;
 }
 

@@ -23,7 +23,8 @@ cv::Mat read_image(const fs::path& path, int flags) {
 cv::Scalar label_colour(uint16_t id) {
   // A fixed, well-spread colour per id.
   uint32_t h = id * 2654435761u;
-  return cv::Scalar(60 + (h & 0x7f) + 60 * ((h >> 7) & 1), 60 + ((h >> 8) & 0x7f) + 60 * ((h >> 15) & 1),
+  return cv::Scalar(60 + (h & 0x7f) + 60 * ((h >> 7) & 1),
+                    60 + ((h >> 8) & 0x7f) + 60 * ((h >> 15) & 1),
                     60 + ((h >> 16) & 0x7f) + 60 * ((h >> 23) & 1));
 }
 
@@ -33,7 +34,8 @@ cv::Mat colour_labels(const cv::Mat& ids) {
     for (int x = 0; x < ids.cols; ++x) {
       uint16_t id = ids.at<uint16_t>(y, x);
       cv::Scalar c = id == 0 ? cv::Scalar(0, 0, 0) : label_colour(id);
-      out.at<cv::Vec3b>(y, x) = cv::Vec3b(static_cast<uchar>(c[0]), static_cast<uchar>(c[1]), static_cast<uchar>(c[2]));
+      out.at<cv::Vec3b>(y, x) =
+          cv::Vec3b(static_cast<uchar>(c[0]), static_cast<uchar>(c[1]), static_cast<uchar>(c[2]));
     }
   return out;
 }
@@ -51,7 +53,8 @@ cv::Mat colour_depth(const cv::Mat& depth16) {
 
 }  // namespace
 
-void write_contact_sheet(const std::string& dataset, const std::string& output, const ContactSheetOptions& options) {
+void write_contact_sheet(const std::string& dataset, const std::string& output,
+                         const ContactSheetOptions& options) {
   const fs::path root(dataset);
   if (!fs::is_directory(root)) fail(dataset, "not a dataset folder");
   if (!fs::is_regular_file(root / "associations.txt")) fail(dataset, "associations.txt missing");
@@ -78,8 +81,10 @@ void write_contact_sheet(const std::string& dataset, const std::string& output, 
     }
     char caption[128];
     std::snprintf(caption, sizeof(caption), "t=%.3f  frame %zu", assoc[i].rgb_timestamp, i);
-    cv::putText(tiles[0], caption, cv::Point(6, 18), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 2);
-    cv::putText(tiles[0], caption, cv::Point(6, 18), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0), 1);
+    cv::putText(tiles[0], caption, cv::Point(6, 18), cv::FONT_HERSHEY_SIMPLEX, 0.5,
+                cv::Scalar(255, 255, 255), 2);
+    cv::putText(tiles[0], caption, cv::Point(6, 18), cv::FONT_HERSHEY_SIMPLEX, 0.5,
+                cv::Scalar(0, 0, 0), 1);
     cv::Mat line;
     cv::hconcat(tiles, line);
     lines.push_back(line);
@@ -87,8 +92,8 @@ void write_contact_sheet(const std::string& dataset, const std::string& output, 
   cv::Mat sheet;
   cv::vconcat(lines, sheet);
   cv::Mat header(28, sheet.cols, CV_8UC3, cv::Scalar(40, 40, 40));
-  cv::putText(header, dataset + "   RGB | depth (0-5 m) | instance labels", cv::Point(8, 19), cv::FONT_HERSHEY_SIMPLEX,
-              0.5, cv::Scalar(255, 255, 255), 1);
+  cv::putText(header, dataset + "   RGB | depth (0-5 m) | instance labels", cv::Point(8, 19),
+              cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 1);
   cv::vconcat(header, sheet, sheet);
   const std::string tmp = output + ".tmp.png";
   if (!cv::imwrite(tmp, sheet)) fail(output, "cannot write image");

@@ -6,12 +6,13 @@
 namespace depot::sim {
 
 struct ContactSheetOptions {
-  int rows = 4;          // frames shown, evenly spread over the sequence
+  int rows = 4;  // frames shown, evenly spread over the sequence
   int thumb_width = 320;
 };
 
 // Reads DATASET (a TUM folder written by the simulator, or any TUM RGB-D
 // folder; labels are shown when present) and writes a PNG/JPG sheet.
-void write_contact_sheet(const std::string& dataset, const std::string& output, const ContactSheetOptions& options);
+void write_contact_sheet(const std::string& dataset, const std::string& output,
+                         const ContactSheetOptions& options);
 
 }  // namespace depot::sim

@@ -28,10 +28,14 @@ namespace {
 
 const size_t kMaxQueued = 6;
 
+// Noisy colour compresses little beyond entropy coding, so Huffman-only is
+// both faster and smaller there; depth and labels keep LZ matching.
 void write_png(const std::string& path, const cv::Mat& img, int compression, size_t& bytes) {
   std::vector<uchar> buf;
-  if (!cv::imencode(".png", img, buf, {cv::IMWRITE_PNG_COMPRESSION, compression}))
-    fail(path, "PNG encoding failed");
+  std::vector<int> params{cv::IMWRITE_PNG_COMPRESSION, compression};
+  if (img.type() == CV_8UC3)
+    params.insert(params.end(), {cv::IMWRITE_PNG_STRATEGY, cv::IMWRITE_PNG_STRATEGY_HUFFMAN_ONLY});
+  if (!cv::imencode(".png", img, buf, params)) fail(path, "PNG encoding failed");
   std::ofstream out(path, std::ios::binary);
   out.write(reinterpret_cast<const char*>(buf.data()), static_cast<std::streamsize>(buf.size()));
   if (!out) fail(path, "write failed (disk full?)");
@@ -48,23 +52,28 @@ nlohmann::json pose_json(const Pose& p) {
 
 }  // namespace
 
-DatasetWriter::DatasetWriter(const DatasetOptions& options, const Scenario& scenario, const ClassTable& classes,
-                             const std::vector<Instance>& instances)
+DatasetWriter::DatasetWriter(const DatasetOptions& options, const Scenario& scenario,
+                             const ClassTable& classes, const std::vector<Instance>& instances)
     : options_(options), scenario_(scenario), classes_(classes), instances_(instances) {
   if (options_.writer_threads < 1 || options_.writer_threads > 32)
     fail("--writers", "writer threads must be 1..32");
   dir_ = std::make_unique<StagedDirectory>(options_.output, options_.overwrite);
-  for (const char* sub : {"rgb", "depth", "labels", "boxes_yolo"}) fs::create_directory(fs::path(dir_->path()) / sub);
+  for (const char* sub : {"rgb", "depth", "labels", "boxes_yolo"})
+    fs::create_directory(fs::path(dir_->path()) / sub);
   const std::string header = "# file: '" + scenario_.name + "' (depot-slam simulator)\n";
   rgb_txt_ = "# color images\n" + header + "# timestamp filename\n";
   depth_txt_ = "# depth maps\n" + header + "# timestamp filename\n";
-  labels_txt_ = "# instance label images (16-bit instance ids, 0 = none)\n" + header + "# timestamp filename\n";
-  gt_txt_ = "# ground truth trajectory (camera-to-world)\n" + header + "# timestamp tx ty tz qx qy qz qw\n";
+  labels_txt_ = "# instance label images (16-bit instance ids, 0 = none)\n" + header +
+                "# timestamp filename\n";
+  gt_txt_ = "# ground truth trajectory (camera-to-world)\n" + header +
+            "# timestamp tx ty tz qx qy qz qw\n";
   assoc_txt_.clear();
-  poses_txt_ = "# per-frame poses of pushables and actors (dataset frame); moving = moved >1 mm or >0.1 deg\n" +
-               header + "# timestamp id tx ty tz qx qy qz qw moving\n";
-  boxes_txt_ = "# ground-truth boxes of visible detectable instances, pixels, x2/y2 exclusive\n" + header +
-               "# timestamp id class x1 y1 x2 y2 visible_pixels moving\n";
+  poses_txt_ =
+      "# per-frame poses of pushables and actors (dataset frame); moving = moved >1 mm or >0.1 "
+      "deg\n" +
+      header + "# timestamp id tx ty tz qx qy qz qw moving\n";
+  boxes_txt_ = "# ground-truth boxes of visible detectable instances, pixels, x2/y2 exclusive\n" +
+               header + "# timestamp id class x1 y1 x2 y2 visible_pixels moving\n";
   for (int i = 0; i < options_.writer_threads; ++i) threads_.emplace_back([this] { worker(); });
 }
 
@@ -107,8 +116,8 @@ void DatasetWriter::add(RenderedFrame frame, const FrameTruth& truth) {
     const int cls = classes_.yolo_index(inst.class_name);
     if (cls < 0) continue;
     char buf[256];
-    std::snprintf(buf, sizeof(buf), "%s %u %s %d %d %d %d %d %d\n", rs.c_str(), b.id, inst.class_name.c_str(), b.x1,
-                  b.y1, b.x2, b.y2, b.pixels, moving[b.id] ? 1 : 0);
+    std::snprintf(buf, sizeof(buf), "%s %u %s %d %d %d %d %d %d\n", rs.c_str(), b.id,
+                  inst.class_name.c_str(), b.x1, b.y1, b.x2, b.y2, b.pixels, moving[b.id] ? 1 : 0);
     boxes_txt_ += buf;
     yolo += yolo_line(cls, b, frame.instance.cols, frame.instance.rows) + "\n";
   }
@@ -162,10 +171,12 @@ void DatasetWriter::write_job(Job& job, WriterTimings& timings) {
   cv::Mat depth16 = depth_to_u16(depth, scenario_.camera.depth_factor);
   auto t1 = std::chrono::steady_clock::now();
   const fs::path root = dir_->path();
-  write_png((root / "rgb" / (job.stamp_rgb + ".png")).string(), job.frame.bgr, options_.png_compression, timings.bytes);
-  write_png((root / "depth" / (job.stamp_depth + ".png")).string(), depth16, options_.png_compression, timings.bytes);
-  write_png((root / "labels" / (job.stamp_rgb + ".png")).string(), job.frame.instance, options_.png_compression,
-            timings.bytes);
+  write_png((root / "rgb" / (job.stamp_rgb + ".png")).string(), job.frame.bgr,
+            options_.png_compression, timings.bytes);
+  write_png((root / "depth" / (job.stamp_depth + ".png")).string(), depth16,
+            options_.png_compression, timings.bytes);
+  write_png((root / "labels" / (job.stamp_rgb + ".png")).string(), job.frame.instance,
+            options_.png_compression, timings.bytes);
   auto t2 = std::chrono::steady_clock::now();
   timings.sensor_ms += std::chrono::duration<double, std::milli>(t1 - t0).count();
   timings.encode_write_ms += std::chrono::duration<double, std::milli>(t2 - t1).count();
@@ -173,7 +184,9 @@ void DatasetWriter::write_job(Job& job, WriterTimings& timings) {
 
 void DatasetWriter::write_text_files() {
   const fs::path root = dir_->path();
-  auto write = [&](const char* name, const std::string& text) { write_text_file_atomic((root / name).string(), text); };
+  auto write = [&](const char* name, const std::string& text) {
+    write_text_file_atomic((root / name).string(), text);
+  };
   write("rgb.txt", rgb_txt_);
   write("depth.txt", depth_txt_);
   write("associations.txt", assoc_txt_);
@@ -190,27 +203,30 @@ void DatasetWriter::write_text_files() {
   const CameraIntrinsics& c = scenario_.camera;
   const SensorSpec& s = scenario_.sensor;
   char calib[1024];
-  std::snprintf(calib, sizeof(calib),
-                "# Pinhole intrinsics of the rendered images (no distortion).\n"
-                "camera:\n  model: pinhole\n  width: %d\n  height: %d\n  fx: %.6f\n  fy: %.6f\n  cx: %.6f\n"
-                "  cy: %.6f\n  k1: 0.0\n  k2: 0.0\n  p1: 0.0\n  p2: 0.0\n  k3: 0.0\n"
-                "depth:\n  factor: %.1f  # PNG value per metre\n  min: %.3f\n  max: %.3f\n  model: %s\n"
-                "  baseline: %.4f\n",
-                c.width, c.height, c.f, c.f, c.cx, c.cy, c.depth_factor, s.ideal ? 0.0 : s.min_depth,
-                s.max_depth, s.ideal ? "ideal" : "kinect", s.baseline);
+  std::snprintf(
+      calib, sizeof(calib),
+      "# Pinhole intrinsics of the rendered images (no distortion).\n"
+      "camera:\n  model: pinhole\n  width: %d\n  height: %d\n  fx: %.6f\n  fy: %.6f\n  cx: %.6f\n"
+      "  cy: %.6f\n  k1: 0.0\n  k2: 0.0\n  p1: 0.0\n  p2: 0.0\n  k3: 0.0\n"
+      "depth:\n  factor: %.1f  # PNG value per metre\n  min: %.3f\n  max: %.3f\n  model: %s\n"
+      "  baseline: %.4f\n",
+      c.width, c.height, c.f, c.f, c.cx, c.cy, c.depth_factor, s.ideal ? 0.0 : s.min_depth,
+      s.max_depth, s.ideal ? "ideal" : "kinect", s.baseline);
   write("calibration.yaml", calib);
 
   nlohmann::json objects = nlohmann::json::array();
   for (const Instance& inst : instances_) {
-    objects.push_back({{"id", inst.id},
-                       {"name", inst.name},
-                       {"class", inst.class_name},
-                       {"category", category_name(inst.category)},
-                       {"kind", instance_kind_name(inst.kind)},
-                       {"yolo_class", classes_.yolo_index(inst.class_name)},
-                       {"pose", pose_json(inst.pose)},
-                       {"extent", {{"min", {inst.extent.min().x(), inst.extent.min().y(), inst.extent.min().z()}},
-                                   {"max", {inst.extent.max().x(), inst.extent.max().y(), inst.extent.max().z()}}}}});
+    objects.push_back(
+        {{"id", inst.id},
+         {"name", inst.name},
+         {"class", inst.class_name},
+         {"category", category_name(inst.category)},
+         {"kind", instance_kind_name(inst.kind)},
+         {"yolo_class", classes_.yolo_index(inst.class_name)},
+         {"pose", pose_json(inst.pose)},
+         {"extent",
+          {{"min", {inst.extent.min().x(), inst.extent.min().y(), inst.extent.min().z()}},
+           {"max", {inst.extent.max().x(), inst.extent.max().y(), inst.extent.max().z()}}}}});
   }
   nlohmann::json doc = {{"scenario", scenario_.name}, {"instances", objects}};
   write("objects.json", doc.dump(1) + "\n");
@@ -233,13 +249,16 @@ void DatasetWriter::write_text_files() {
     fs::create_directories(root / "yolo" / "labels");
     for (const auto& [stamp, content] : yolo_files_) {
       std::error_code ec;
-      fs::create_hard_link(root / "rgb" / (stamp + ".png"), root / "yolo" / "images" / (stamp + ".png"), ec);
-      if (ec) fs::copy_file(root / "rgb" / (stamp + ".png"), root / "yolo" / "images" / (stamp + ".png"));
+      fs::create_hard_link(root / "rgb" / (stamp + ".png"),
+                           root / "yolo" / "images" / (stamp + ".png"), ec);
+      if (ec)
+        fs::copy_file(root / "rgb" / (stamp + ".png"), root / "yolo" / "images" / (stamp + ".png"));
       write_text_file_atomic((root / "yolo" / "labels" / (stamp + ".txt")).string(), content);
     }
     std::string data = "path: .\ntrain: images\nval: images\nnames:\n";
     int i = 0;
-    for (const auto& n : classes_.yolo_names()) data += "  " + std::to_string(i++) + ": " + n + "\n";
+    for (const auto& n : classes_.yolo_names())
+      data += "  " + std::to_string(i++) + ": " + n + "\n";
     write_text_file_atomic((root / "yolo" / "data.yaml").string(), data);
   }
 }

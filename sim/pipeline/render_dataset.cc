@@ -25,10 +25,12 @@ RenderSummary render_dataset(Scenario scenario, const RenderRequest& request) {
   apply_overrides(scenario, request);
   auto start = std::chrono::steady_clock::now();
   SimulatedSequence sequence(scenario, request.gl);
-  DatasetWriter writer(request.dataset, sequence.scenario(), sequence.classes(), sequence.world().instances());
+  DatasetWriter writer(request.dataset, sequence.scenario(), sequence.classes(),
+                       sequence.world().instances());
 
   RenderSummary summary;
-  Progress progress("render " + scenario.name, static_cast<size_t>(sequence.frame_count()), request.progress);
+  Progress progress("render " + scenario.name, static_cast<size_t>(sequence.frame_count()),
+                    request.progress);
   RenderedFrame frame;
   FrameTruth truth;
   SequenceTimings t;

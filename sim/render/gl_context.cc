@@ -19,7 +19,9 @@ GlBackend parse_gl_backend(const std::string& name) {
   fail("--gl", "unknown GL backend '" + name + "' (expected osmesa or egl)");
 }
 
-const char* gl_backend_name(GlBackend b) { return b == GlBackend::kEgl ? "egl" : "osmesa"; }
+const char* gl_backend_name(GlBackend b) {
+  return b == GlBackend::kEgl ? "egl" : "osmesa";
+}
 
 namespace {
 
@@ -45,8 +47,10 @@ class OsMesaContext : public GlContext {
     backend_ = GlBackend::kOsMesa;
     lib_ = open_library({"libOSMesa.so.8", "libOSMesa.so.6", "libOSMesa.so"});
     if (!lib_) fail("osmesa", "cannot load libOSMesa (install libosmesa6)");
-    auto create = symbol<OSMesaContext (*)(GLenum, GLint, GLint, GLint, OSMesaContext)>(lib_, "OSMesaCreateContextExt");
-    make_current_fn_ = symbol<GLboolean (*)(OSMesaContext, void*, GLenum, GLsizei, GLsizei)>(lib_, "OSMesaMakeCurrent");
+    auto create = symbol<OSMesaContext (*)(GLenum, GLint, GLint, GLint, OSMesaContext)>(
+        lib_, "OSMesaCreateContextExt");
+    make_current_fn_ = symbol<GLboolean (*)(OSMesaContext, void*, GLenum, GLsizei, GLsizei)>(
+        lib_, "OSMesaMakeCurrent");
     destroy_ = symbol<void (*)(OSMesaContext)>(lib_, "OSMesaDestroyContext");
     ctx_ = create(OSMESA_RGBA, 24, 8, 0, nullptr);
     if (!ctx_) fail("osmesa", "OSMesaCreateContextExt failed");
@@ -77,15 +81,17 @@ class EglContext : public GlContext {
     lib_ = open_library({"libEGL.so.1", "libEGL.so"});
     if (!lib_) fail("egl", "cannot load libEGL (install libegl1 and libegl-mesa0)");
     auto get_proc = symbol<void* (*)(const char*)>(lib_, "eglGetProcAddress");
-    auto get_platform_display =
-        reinterpret_cast<EGLDisplay (*)(EGLenum, void*, const EGLint*)>(get_proc("eglGetPlatformDisplayEXT"));
+    auto get_platform_display = reinterpret_cast<EGLDisplay (*)(EGLenum, void*, const EGLint*)>(
+        get_proc("eglGetPlatformDisplayEXT"));
     auto initialize = symbol<EGLBoolean (*)(EGLDisplay, EGLint*, EGLint*)>(lib_, "eglInitialize");
     auto choose_config =
-        symbol<EGLBoolean (*)(EGLDisplay, const EGLint*, EGLConfig*, EGLint, EGLint*)>(lib_, "eglChooseConfig");
+        symbol<EGLBoolean (*)(EGLDisplay, const EGLint*, EGLConfig*, EGLint, EGLint*)>(
+            lib_, "eglChooseConfig");
     auto bind_api = symbol<EGLBoolean (*)(EGLenum)>(lib_, "eglBindAPI");
-    auto create_context =
-        symbol<EGLContext (*)(EGLDisplay, EGLConfig, EGLContext, const EGLint*)>(lib_, "eglCreateContext");
-    make_current_fn_ = symbol<EGLBoolean (*)(EGLDisplay, EGLSurface, EGLSurface, EGLContext)>(lib_, "eglMakeCurrent");
+    auto create_context = symbol<EGLContext (*)(EGLDisplay, EGLConfig, EGLContext, const EGLint*)>(
+        lib_, "eglCreateContext");
+    make_current_fn_ = symbol<EGLBoolean (*)(EGLDisplay, EGLSurface, EGLSurface, EGLContext)>(
+        lib_, "eglMakeCurrent");
     destroy_context_ = symbol<EGLBoolean (*)(EGLDisplay, EGLContext)>(lib_, "eglDestroyContext");
     terminate_ = symbol<EGLBoolean (*)(EGLDisplay)>(lib_, "eglTerminate");
     if (!get_platform_display) fail("egl", "eglGetPlatformDisplayEXT not available");
@@ -93,12 +99,25 @@ class EglContext : public GlContext {
     if (display_ == EGL_NO_DISPLAY) fail("egl", "no surfaceless EGL display");
     EGLint major = 0, minor = 0;
     if (!initialize(display_, &major, &minor)) fail("egl", "eglInitialize failed");
-    const EGLint attribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8,
-                              EGL_BLUE_SIZE, 8, EGL_ALPHA_SIZE, 8, EGL_DEPTH_SIZE, 24,
-                              EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    const EGLint attribs[] = {EGL_SURFACE_TYPE,
+                              EGL_PBUFFER_BIT,
+                              EGL_RED_SIZE,
+                              8,
+                              EGL_GREEN_SIZE,
+                              8,
+                              EGL_BLUE_SIZE,
+                              8,
+                              EGL_ALPHA_SIZE,
+                              8,
+                              EGL_DEPTH_SIZE,
+                              24,
+                              EGL_RENDERABLE_TYPE,
+                              EGL_OPENGL_BIT,
+                              EGL_NONE};
     EGLConfig config;
     EGLint count = 0;
-    if (!choose_config(display_, attribs, &config, 1, &count) || count < 1) fail("egl", "no suitable EGL config");
+    if (!choose_config(display_, attribs, &config, 1, &count) || count < 1)
+      fail("egl", "no suitable EGL config");
     if (!bind_api(EGL_OPENGL_API)) fail("egl", "eglBindAPI(EGL_OPENGL_API) failed");
     ctx_ = create_context(display_, config, EGL_NO_CONTEXT, nullptr);
     if (ctx_ == EGL_NO_CONTEXT) fail("egl", "eglCreateContext failed");
@@ -112,7 +131,8 @@ class EglContext : public GlContext {
     if (display_ != EGL_NO_DISPLAY) terminate_(display_);
   }
   void make_current() override {
-    if (!make_current_fn_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_)) fail("egl", "eglMakeCurrent failed");
+    if (!make_current_fn_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_))
+      fail("egl", "eglMakeCurrent failed");
   }
 
  private:

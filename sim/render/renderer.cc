@@ -13,10 +13,11 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-Renderer::Renderer(const mjModel* model, int camera_id, const CameraIntrinsics& intrinsics, GlBackend backend,
-                   std::vector<uint16_t> geom_instance)
+Renderer::Renderer(const mjModel* model, int camera_id, const CameraIntrinsics& intrinsics,
+                   GlBackend backend, std::vector<uint16_t> geom_instance)
     : model_(model), intrinsics_(intrinsics), geom_instance_(std::move(geom_instance)) {
-  if (model->vis.global.offwidth < intrinsics.width || model->vis.global.offheight < intrinsics.height)
+  if (model->vis.global.offwidth < intrinsics.width ||
+      model->vis.global.offheight < intrinsics.height)
     fail("renderer", "offscreen buffer smaller than the image");
   gl_ = GlContext::create(backend, intrinsics.width, intrinsics.height);
   mjv_defaultScene(&scene_);
@@ -26,7 +27,8 @@ Renderer::Renderer(const mjModel* model, int camera_id, const CameraIntrinsics& 
   mjv_makeScene(model, &scene_, 6000);
   mjr_makeContext(model, &context_, mjFONTSCALE_50);
   mjr_setBuffer(mjFB_OFFSCREEN, &context_);
-  if (context_.currentBuffer != mjFB_OFFSCREEN) fail("renderer", "offscreen framebuffer not available");
+  if (context_.currentBuffer != mjFB_OFFSCREEN)
+    fail("renderer", "offscreen framebuffer not available");
   camera_.type = mjCAMERA_FIXED;
   camera_.fixedcamid = camera_id;
   scene_.flags[mjRND_SKYBOX] = 0;
@@ -79,7 +81,8 @@ void Renderer::render(mjData* data, RenderedFrame& out, RenderTimings* timings) 
   scene_.flags[mjRND_SEGMENT] = 0;
   scene_.flags[mjRND_IDCOLOR] = 0;
   auto t2 = std::chrono::steady_clock::now();
-  if (timings) timings->segmentation_ms = std::chrono::duration<double, std::milli>(t2 - t1).count();
+  if (timings)
+    timings->segmentation_ms = std::chrono::duration<double, std::milli>(t2 - t1).count();
 
   out.bgr.create(h, w, CV_8UC3);
   out.depth.create(h, w, CV_32F);
@@ -99,7 +102,8 @@ void Renderer::render(mjData* data, RenderedFrame& out, RenderTimings* timings) 
       uint16_t id = 0;
       if (seg > 0 && seg <= scene_.ngeom) {
         const mjvGeom& g = scene_.geoms[seg - 1];
-        if (g.objtype == mjOBJ_GEOM && g.objid >= 0 && g.objid < static_cast<int>(geom_instance_.size()))
+        if (g.objtype == mjOBJ_GEOM && g.objid >= 0 &&
+            g.objid < static_cast<int>(geom_instance_.size()))
           id = geom_instance_[g.objid];
       }
       inst[x] = id;

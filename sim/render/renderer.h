@@ -23,8 +23,8 @@ struct RenderTimings {
 class Renderer {
  public:
   // `geom_instance[g]` is the instance id of geom g.
-  Renderer(const mjModel* model, int camera_id, const CameraIntrinsics& intrinsics, GlBackend backend,
-           std::vector<uint16_t> geom_instance);
+  Renderer(const mjModel* model, int camera_id, const CameraIntrinsics& intrinsics,
+           GlBackend backend, std::vector<uint16_t> geom_instance);
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;

@@ -8,9 +8,12 @@ namespace depot::sim {
 
 const char* category_name(Category c) {
   switch (c) {
-    case Category::kStatic: return "static";
-    case Category::kPotentiallyDynamic: return "potentially_dynamic";
-    case Category::kDynamic: return "dynamic";
+    case Category::kStatic:
+      return "static";
+    case Category::kPotentiallyDynamic:
+      return "potentially_dynamic";
+    case Category::kDynamic:
+      return "dynamic";
   }
   return "static";
 }

@@ -11,7 +11,7 @@ enum class Category { kStatic, kPotentiallyDynamic, kDynamic };
 const char* category_name(Category c);
 
 struct ObjectClass {
-  std::string name;      // e.g. "person"
+  std::string name;  // e.g. "person"
   Category category = Category::kStatic;
   bool detectable = false;  // gets ground-truth boxes and a YOLO class index
 };

@@ -20,7 +20,7 @@ struct CameraIntrinsics {
 };
 
 struct CameraMotionSpec {
-  std::string type = "static";  // xyz, halfsphere, rpy, static, waypoints, file
+  std::string type = "static";          // xyz, halfsphere, rpy, static, waypoints, file
   Eigen::Vector3d position{0, 0, 1.3};  // base position (or half-sphere centre)
   Eigen::Vector3d look_at{0, 1, 1.3};
   double amplitude = 0.0;  // xyz: m; rpy: deg; halfsphere: radius m (0 = type default)
@@ -33,7 +33,7 @@ struct CameraMotionSpec {
   double pitch_deg = 8.0;  // downward tilt of a robot camera
   bool loop = true;
   // file
-  std::string file;  // TUM trajectory, resolved path
+  std::string file;               // TUM trajectory, resolved path
   bool anchor_first_pose = true;  // place the first pose at position/look_at
 };
 
@@ -65,7 +65,7 @@ struct ActorSpec {
   double size = 1.0;
   Eigen::Vector2d position{0, 0};
   double yaw_deg = 0.0;
-  std::string target;  // push: pushable name; sit: chair name
+  std::string target;   // push: pushable name; sit: chair name
   double height = 0.0;  // bird flight height
   uint64_t appearance = 0;
 };

@@ -16,7 +16,9 @@ namespace depot::sim {
 bool is_living_actor(const std::string& type) {
   return type == "human" || type == "dog" || type == "cat" || type == "pig" || type == "bird";
 }
-bool is_pushable_actor(const std::string& type) { return type == "chair" || type == "cart"; }
+bool is_pushable_actor(const std::string& type) {
+  return type == "chair" || type == "cart";
+}
 
 void scale_camera(CameraIntrinsics& c, int width) {
   if (width < 16 || width > 4096) fail("--width", "image width must be 16..4096");
@@ -84,7 +86,8 @@ class Fields {
     YAML::Node n = node_[key];
     if (!n) return fallback;
     auto v = get<std::vector<double>>(key, {});
-    if (v.size() != 3 || !std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }))
+    if (v.size() != 3 ||
+        !std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }))
       fail(where(n), "'" + std::string(key) + "' must be [x, y, z]");
     return {v[0], v[1], v[2]};
   }
@@ -122,7 +125,8 @@ class Fields {
     if (p.is_relative()) p = fs::path(file_).parent_path() / p;
     std::error_code ec;
     if (!fs::is_regular_file(p, ec))
-      fail(where(n), "file '" + n.as<std::string>() + "' not found (" + p.lexically_normal().string() + ")");
+      fail(where(n),
+           "file '" + n.as<std::string>() + "' not found (" + p.lexically_normal().string() + ")");
     return p.lexically_normal().string();
   }
 
@@ -131,7 +135,8 @@ class Fields {
   std::string file_;
 };
 
-const std::set<std::string> kMotionTypes = {"xyz", "halfsphere", "rpy", "static", "waypoints", "file"};
+const std::set<std::string> kMotionTypes = {"xyz",    "halfsphere", "rpy",
+                                            "static", "waypoints",  "file"};
 
 void read_camera(const Fields& f, CameraIntrinsics& cam) {
   f.allow_only({"width", "height", "f", "cx", "cy", "depth_factor"});
@@ -179,11 +184,12 @@ void read_timestamps(const Fields& f, TimestampSpec& t) {
 }
 
 void read_sensor(const Fields& f, SensorSpec& s) {
-  f.allow_only({"model", "min_depth", "max_depth", "disparity_noise", "disparity_step",
-                "baseline", "rgb_noise"});
+  f.allow_only({"model", "min_depth", "max_depth", "disparity_noise", "disparity_step", "baseline",
+                "rgb_noise"});
   std::string model = f.str("model", "kinect");
   if (model != "kinect" && model != "ideal")
-    fail(f.where(f.node("model")), "unknown sensor model '" + model + "' (expected kinect or ideal)");
+    fail(f.where(f.node("model")),
+         "unknown sensor model '" + model + "' (expected kinect or ideal)");
   s.ideal = model == "ideal";
   s.min_depth = f.number("min_depth", s.min_depth, 0.0, 10.0);
   s.max_depth = f.number("max_depth", s.max_depth, 0.5, 50.0);
@@ -254,18 +260,22 @@ Scenario load_scenario(const std::string& path) {
   fs::path here = fs::path(path).parent_path();
   s.scene_path = top.has("scene") ? top.existing_file("scene")
                                   : (here / "../scenes/depot.yaml").lexically_normal().string();
-  s.classes_path = top.has("classes") ? top.existing_file("classes")
-                                      : (here / "../scenes/classes.yaml").lexically_normal().string();
+  s.classes_path = top.has("classes")
+                       ? top.existing_file("classes")
+                       : (here / "../scenes/classes.yaml").lexically_normal().string();
   s.seed = top.get<uint64_t>("seed", 1);
   s.frames = static_cast<int>(top.number("frames", 300, 1, 1e6));
   s.shadows = top.get<bool>("shadows", false);
   s.dynamic_load = top.number("dynamic_load", 1.0, 0.0, 4.0);
 
-  if (top.has("camera")) read_camera(Fields(top.node("camera"), path, "camera"), s.camera);
-  else read_camera(Fields(YAML::Node(YAML::NodeType::Map), path, "camera"), s.camera);
+  if (top.has("camera"))
+    read_camera(Fields(top.node("camera"), path, "camera"), s.camera);
+  else
+    read_camera(Fields(YAML::Node(YAML::NodeType::Map), path, "camera"), s.camera);
   if (!top.has("motion")) fail(top.where(), "missing 'motion'");
   read_motion(Fields(top.node("motion"), path, "motion"), s.motion);
-  if (top.has("timestamps")) read_timestamps(Fields(top.node("timestamps"), path, "timestamps"), s.timestamps);
+  if (top.has("timestamps"))
+    read_timestamps(Fields(top.node("timestamps"), path, "timestamps"), s.timestamps);
   if (top.has("sensor")) read_sensor(Fields(top.node("sensor"), path, "sensor"), s.sensor);
 
   if (YAML::Node actors = top.node("actors")) {
@@ -285,7 +295,8 @@ Scenario load_scenario(const std::string& path) {
     auto it = std::find_if(s.written_actors.begin(), s.written_actors.end(),
                            [&](const ActorSpec& b) { return b.name == a.target; });
     if (it == s.written_actors.end() || !is_pushable_actor(it->type))
-      fail(path, "actor '" + a.name + "' refers to '" + a.target + "', which is not a chair or cart");
+      fail(path,
+           "actor '" + a.name + "' refers to '" + a.target + "', which is not a chair or cart");
     if (a.action == "sit" && it->type != "chair")
       fail(path, "actor '" + a.name + "' can only sit on a chair");
     if (!claimed.insert(a.target).second)

@@ -37,7 +37,8 @@ struct InstanceGeometry {
 
 GeomDesc box(const Eigen::Vector3d& half, const Eigen::Vector3d& at, const std::string& material,
              double yaw = 0.0);
-GeomDesc cylinder(double radius, double half_height, const Eigen::Vector3d& at, const std::string& material);
+GeomDesc cylinder(double radius, double half_height, const Eigen::Vector3d& at,
+                  const std::string& material);
 
 // Axis-aligned bounds of geoms in their body frame (conservative for round shapes).
 Eigen::AlignedBox3d local_bounds(const std::vector<GeomDesc>& geoms);

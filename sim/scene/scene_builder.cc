@@ -17,10 +17,14 @@ namespace depot::sim {
 
 const char* instance_kind_name(InstanceKind k) {
   switch (k) {
-    case InstanceKind::kStructure: return "structure";
-    case InstanceKind::kStatic: return "static";
-    case InstanceKind::kPushable: return "pushable";
-    case InstanceKind::kActor: return "actor";
+    case InstanceKind::kStructure:
+      return "structure";
+    case InstanceKind::kStatic:
+      return "static";
+    case InstanceKind::kPushable:
+      return "pushable";
+    case InstanceKind::kActor:
+      return "actor";
   }
   return "static";
 }
@@ -32,7 +36,9 @@ std::string num(double v) {
   std::snprintf(buf, sizeof(buf), "%.6g", std::abs(v) < 1e-12 ? 0.0 : v);
   return buf;
 }
-std::string vec(const Eigen::Vector3d& v) { return num(v.x()) + " " + num(v.y()) + " " + num(v.z()); }
+std::string vec(const Eigen::Vector3d& v) {
+  return num(v.x()) + " " + num(v.y()) + " " + num(v.z());
+}
 std::string quat(const Eigen::Matrix3d& r) {
   Eigen::Quaterniond q(r);
   q.normalize();
@@ -41,11 +47,16 @@ std::string quat(const Eigen::Matrix3d& r) {
 
 const char* shape_name(Shape s) {
   switch (s) {
-    case Shape::kBox: return "box";
-    case Shape::kSphere: return "sphere";
-    case Shape::kCapsule: return "capsule";
-    case Shape::kEllipsoid: return "ellipsoid";
-    case Shape::kCylinder: return "cylinder";
+    case Shape::kBox:
+      return "box";
+    case Shape::kSphere:
+      return "sphere";
+    case Shape::kCapsule:
+      return "capsule";
+    case Shape::kEllipsoid:
+      return "ellipsoid";
+    case Shape::kCylinder:
+      return "cylinder";
   }
   return "box";
 }
@@ -53,10 +64,15 @@ const char* shape_name(Shape s) {
 void write_geom(std::ostringstream& x, const GeomDesc& g) {
   x << "<geom type=\"" << shape_name(g.shape) << "\" size=\"";
   switch (g.shape) {
-    case Shape::kSphere: x << num(g.size.x()); break;
+    case Shape::kSphere:
+      x << num(g.size.x());
+      break;
     case Shape::kCapsule:
-    case Shape::kCylinder: x << num(g.size.x()) << " " << num(g.size.y()); break;
-    default: x << vec(g.size);
+    case Shape::kCylinder:
+      x << num(g.size.x()) << " " << num(g.size.y());
+      break;
+    default:
+      x << vec(g.size);
   }
   x << "\" pos=\"" << vec(g.local.translation()) << "\" quat=\"" << quat(g.local.linear()) << "\"";
   x << " contype=\"" << g.contype << "\" conaffinity=\"" << g.conaffinity << "\"";
@@ -73,7 +89,8 @@ void write_geom(std::ostringstream& x, const GeomDesc& g) {
 void write_hall(std::ostringstream& x, const SceneLayout& l) {
   const double hx = l.length / 2, hy = l.width / 2, h = l.height;
   x << "<geom name=\"floor\" type=\"plane\" size=\"" << num(hx) << " " << num(hy)
-    << " 0.5\" material=\"floor\" contype=\"1\" conaffinity=\"1\" friction=\"0.05 0.005 0.0001\"/>\n";
+    << " 0.5\" material=\"floor\" contype=\"1\" conaffinity=\"1\" friction=\"0.05 0.005 "
+       "0.0001\"/>\n";
   struct Wall {
     Eigen::Vector3d pos, xaxis;
     double half_width;
@@ -83,8 +100,9 @@ void write_hall(std::ostringstream& x, const SceneLayout& l) {
                         {{hx, 0, h / 2}, {0, -1, 0}, hy},
                         {{-hx, 0, h / 2}, {0, 1, 0}, hy}};
   for (const auto& w : walls) {
-    x << "<geom type=\"plane\" size=\"" << num(w.half_width) << " " << num(h / 2) << " 0.5\" pos=\"" << vec(w.pos)
-      << "\" xyaxes=\"" << vec(w.xaxis) << " 0 0 1\" material=\"wall\" contype=\"0\" conaffinity=\"0\"/>\n";
+    x << "<geom type=\"plane\" size=\"" << num(w.half_width) << " " << num(h / 2) << " 0.5\" pos=\""
+      << vec(w.pos) << "\" xyaxes=\"" << vec(w.xaxis)
+      << " 0 0 1\" material=\"wall\" contype=\"0\" conaffinity=\"0\"/>\n";
   }
   x << "<geom type=\"plane\" size=\"" << num(hx) << " " << num(hy) << " 0.5\" pos=\"0 0 " << num(h)
     << "\" xyaxes=\"1 0 0 0 -1 0\" material=\"ceiling\" contype=\"0\" conaffinity=\"0\"/>\n";
@@ -102,7 +120,8 @@ bool inside_hall(const SceneLayout& l, const Eigen::Vector2d& p, double margin =
 
 }  // namespace
 
-SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes, const Scenario& scenario) {
+SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
+                       const Scenario& scenario) {
   SceneModel model;
   const CameraIntrinsics& cam = scenario.camera;
   std::ostringstream x;
@@ -120,20 +139,22 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes, con
   for (const auto& t : textures.textures) {
     std::string file = "tex_" + t.name + ".png";
     model.assets.emplace_back(file, png_bytes(t.bgr));
-    x << "<texture name=\"" << t.name << "\" type=\"" << (t.cube ? "cube" : "2d") << "\" file=\"" << file << "\"/>\n";
+    x << "<texture name=\"" << t.name << "\" type=\"" << (t.cube ? "cube" : "2d") << "\" file=\""
+      << file << "\"/>\n";
   }
   for (const auto& m : textures.materials) {
     x << "<material name=\"" << m.name << "\"";
     if (!m.texture.empty()) {
-      x << " texture=\"" << m.texture << "\" texrepeat=\"" << num(m.texrepeat) << " " << num(m.texrepeat)
-        << "\" texuniform=\"true\"";
+      x << " texture=\"" << m.texture << "\" texrepeat=\"" << num(m.texrepeat) << " "
+        << num(m.texrepeat) << "\" texuniform=\"true\"";
     }
-    x << " rgba=\"" << num(m.rgba[0]) << " " << num(m.rgba[1]) << " " << num(m.rgba[2]) << " " << num(m.rgba[3])
-      << "\" specular=\"0\" shininess=\"0\" reflectance=\"0\"/>\n";
+    x << " rgba=\"" << num(m.rgba[0]) << " " << num(m.rgba[1]) << " " << num(m.rgba[2]) << " "
+      << num(m.rgba[3]) << "\" specular=\"0\" shininess=\"0\" reflectance=\"0\"/>\n";
   }
   x << "</asset>\n<worldbody>\n";
   for (const auto& l : layout.lights) {
-    x << "<light pos=\"" << vec(l) << "\" dir=\"0 0 -1\" directional=\"false\" diffuse=\"0.42 0.42 0.4\""
+    x << "<light pos=\"" << vec(l)
+      << "\" dir=\"0 0 -1\" directional=\"false\" diffuse=\"0.42 0.42 0.4\""
       << " specular=\"0 0 0\" attenuation=\"1 0.02 0\" cutoff=\"80\" exponent=\"1\" castshadow=\""
       << (scenario.shadows ? "true" : "false") << "\"/>\n";
   }
@@ -157,20 +178,22 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes, con
   {
     Instance& hall = add_instance("hall", "structure", InstanceKind::kStructure, layout.path);
     hall.bodies.push_back("world");
-    hall.extent = Eigen::AlignedBox3d(Eigen::Vector3d(-layout.length / 2, -layout.width / 2, 0),
-                                      Eigen::Vector3d(layout.length / 2, layout.width / 2, layout.height));
+    hall.extent =
+        Eigen::AlignedBox3d(Eigen::Vector3d(-layout.length / 2, -layout.width / 2, 0),
+                            Eigen::Vector3d(layout.length / 2, layout.width / 2, layout.height));
   }
 
   // Static furniture: one fixed body per instance.
   for (const SceneObject& object : layout.objects) {
     for (const InstanceGeometry& g : build_scene_object(object, scenario.seed)) {
-      Instance& inst = add_instance(g.name, g.class_name, InstanceKind::kStatic, layout.path + ": object '" + object.name + "'");
+      Instance& inst = add_instance(g.name, g.class_name, InstanceKind::kStatic,
+                                    layout.path + ": object '" + object.name + "'");
       const std::string body = "static/" + g.name;
       inst.bodies.push_back(body);
       inst.pose = g.pose;
       inst.extent = local_bounds(g.geoms);
-      x << "<body name=\"" << body << "\" pos=\"" << vec(g.pose.translation()) << "\" quat=\"" << quat(g.pose.linear())
-        << "\">\n";
+      x << "<body name=\"" << body << "\" pos=\"" << vec(g.pose.translation()) << "\" quat=\""
+        << quat(g.pose.linear()) << "\">\n";
       for (const auto& geom : g.geoms) write_geom(x, geom);
       x << "</body>\n";
     }
@@ -180,9 +203,11 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes, con
   const std::string where = scenario.source_path;
   for (const ActorSpec& a : scenario.actors) {
     if (!is_pushable_actor(a.type)) continue;
-    if (!inside_hall(layout, a.position, 0.3)) fail(where, "actor '" + a.name + "' is outside the hall");
+    if (!inside_hall(layout, a.position, 0.3))
+      fail(where, "actor '" + a.name + "' is outside the hall");
     InstanceGeometry g = build_pushable(a.type, a.name, derive_seed(scenario.seed, a.appearance));
-    Instance& inst = add_instance(a.name, a.type, InstanceKind::kPushable, where + ": actor '" + a.name + "'");
+    Instance& inst =
+        add_instance(a.name, a.type, InstanceKind::kPushable, where + ": actor '" + a.name + "'");
     const std::string body = "pushable/" + a.name;
     inst.bodies.push_back(body);
     inst.pose = ground_pose(a.position, 0.0, deg(a.yaw_deg));
@@ -199,7 +224,8 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes, con
   for (const ActorSpec& a : scenario.actors) {
     if (!is_living_actor(a.type)) continue;
     for (const auto& p : a.path)
-      if (!inside_hall(layout, p, 0.2)) fail(where, "actor '" + a.name + "' has a path point outside the hall");
+      if (!inside_hall(layout, p, 0.2))
+        fail(where, "actor '" + a.name + "' has a path point outside the hall");
     SeatPose seat;
     const SeatPose* seat_ptr = nullptr;
     if (a.action == "sit") {
@@ -212,7 +238,8 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes, con
       seat_ptr = &seat;
     }
     std::unique_ptr<Actor> actor = make_actor(a, seat_ptr);
-    Instance& inst = add_instance(a.name, actor->class_name(), InstanceKind::kActor, where + ": actor '" + a.name + "'");
+    Instance& inst = add_instance(a.name, actor->class_name(), InstanceKind::kActor,
+                                  where + ": actor '" + a.name + "'");
     inst.actor = static_cast<int>(model.actors.size());
     inst.pose = actor->root_pose(0.0);
     inst.extent = actor->local_extent();
@@ -228,8 +255,8 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes, con
       g.material = part.material;
       g.contype = 0;
       g.conaffinity = 0;
-      x << "<body name=\"" << body << "\" mocap=\"true\" pos=\"" << vec(poses[i].translation()) << "\" quat=\""
-        << quat(poses[i].linear()) << "\">\n";
+      x << "<body name=\"" << body << "\" mocap=\"true\" pos=\"" << vec(poses[i].translation())
+        << "\" quat=\"" << quat(poses[i].linear()) << "\">\n";
       if (!part.pusher) write_geom(x, g);
       x << "</body>\n";
       if (part.pusher) {

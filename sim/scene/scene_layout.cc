@@ -10,8 +10,8 @@
 namespace depot::sim {
 namespace {
 
-const std::set<std::string> kObjectTypes = {"rack", "crate_stack", "sack_pile", "pallet", "workbench",
-                                            "desk", "barrel", "poster", "door"};
+const std::set<std::string> kObjectTypes = {
+    "rack", "crate_stack", "sack_pile", "pallet", "workbench", "desk", "barrel", "poster", "door"};
 
 std::string at(const std::string& path, const YAML::Node& n) {
   return path + ":" + std::to_string(n.Mark().line + 1);
@@ -43,11 +43,13 @@ SceneLayout load_scene_layout(const std::string& path) {
   YAML::Node hall = root["hall"];
   if (!hall) fail(path, "missing 'hall'");
   auto size = read<std::vector<double>>(path, hall, "size", {20.0, 12.0});
-  if (size.size() != 2 || !(size[0] > 2 && size[1] > 2)) fail(at(path, hall), "hall size must be [length, width] > 2 m");
+  if (size.size() != 2 || !(size[0] > 2 && size[1] > 2))
+    fail(at(path, hall), "hall size must be [length, width] > 2 m");
   layout.length = size[0];
   layout.width = size[1];
   layout.height = read<double>(path, hall, "height", 4.5);
-  if (!(layout.height > 2.0 && layout.height < 20.0)) fail(at(path, hall), "hall height out of range (2, 20) m");
+  if (!(layout.height > 2.0 && layout.height < 20.0))
+    fail(at(path, hall), "hall height out of range (2, 20) m");
   for (const auto& l : root["lights"]) {
     auto v = l.as<std::vector<double>>();
     if (v.size() != 3) fail(at(path, l), "light must be [x, y, z]");
@@ -58,7 +60,8 @@ SceneLayout load_scene_layout(const std::string& path) {
   for (const auto& n : root["objects"]) {
     SceneObject o;
     o.type = read<std::string>(path, n, "type", "");
-    if (!kObjectTypes.count(o.type)) fail(at(path, n), "unknown scene object type '" + o.type + "'");
+    if (!kObjectTypes.count(o.type))
+      fail(at(path, n), "unknown scene object type '" + o.type + "'");
     o.name = read<std::string>(path, n, "name", o.type + "_" + std::to_string(index++));
     auto p = read<std::vector<double>>(path, n, "position", {});
     if (p.size() != 2 || !std::isfinite(p[0]) || !std::isfinite(p[1]))

@@ -13,9 +13,9 @@ struct SceneObject {
   std::string name;
   Eigen::Vector2d position{0, 0};
   double yaw_deg = 0.0;
-  double z = 0.0;               // base height (posters: centre height)
-  double length = 2.4;          // racks, workbenches, desks (m)
-  int levels = 4;               // racks
+  double z = 0.0;                  // base height (posters: centre height)
+  double length = 2.4;             // racks, workbenches, desks (m)
+  int levels = 4;                  // racks
   Eigen::Vector3i count{1, 1, 1};  // crate stacks / sack piles: nx, ny, nz
 };
 

@@ -25,10 +25,10 @@ struct Instance {
   std::string class_name;
   Category category = Category::kStatic;
   InstanceKind kind = InstanceKind::kStatic;
-  Pose pose = Pose::Identity();       // world pose (initial, for moving ones)
-  Eigen::AlignedBox3d extent;         // bounds in the instance's own frame
-  std::vector<std::string> bodies;    // MuJoCo body names that belong to it
-  int actor = -1;                     // index into SceneModel::actors
+  Pose pose = Pose::Identity();     // world pose (initial, for moving ones)
+  Eigen::AlignedBox3d extent;       // bounds in the instance's own frame
+  std::vector<std::string> bodies;  // MuJoCo body names that belong to it
+  int actor = -1;                   // index into SceneModel::actors
 };
 
 struct SceneModel {
@@ -42,6 +42,7 @@ struct SceneModel {
 
 // Builds the depot from its layout plus the scenario's actors and pushables.
 // Fails (depot::Error) on unknown classes or actors placed outside the hall.
-SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes, const Scenario& scenario);
+SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
+                       const Scenario& scenario);
 
 }  // namespace depot::sim

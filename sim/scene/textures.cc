@@ -10,7 +10,9 @@
 namespace depot::sim {
 namespace {
 
-cv::Scalar bgr(int r, int g, int b) { return cv::Scalar(b, g, r); }
+cv::Scalar bgr(int r, int g, int b) {
+  return cv::Scalar(b, g, r);
+}
 
 cv::Scalar jitter(Rng& rng, cv::Scalar c, double amount) {
   for (int i = 0; i < 3; ++i) c[i] = std::clamp(c[i] + rng.uniform(-amount, amount), 0.0, 255.0);
@@ -22,18 +24,21 @@ cv::Scalar jitter(Rng& rng, cv::Scalar c, double amount) {
 void add_value_noise(cv::Mat& img, Rng& rng, int cells, double amplitude) {
   cv::Mat grid(cells, cells, CV_32F);
   for (int y = 0; y < cells; ++y)
-    for (int x = 0; x < cells; ++x) grid.at<float>(y, x) = static_cast<float>(rng.uniform(-1.0, 1.0));
+    for (int x = 0; x < cells; ++x)
+      grid.at<float>(y, x) = static_cast<float>(rng.uniform(-1.0, 1.0));
   cv::Mat up;
   cv::resize(grid, up, img.size(), 0, 0, cv::INTER_CUBIC);
   for (int y = 0; y < img.rows; ++y) {
     auto* row = img.ptr<cv::Vec3b>(y);
     const float* n = up.ptr<float>(y);
     for (int x = 0; x < img.cols; ++x)
-      for (int c = 0; c < 3; ++c) row[x][c] = cv::saturate_cast<uchar>(row[x][c] + amplitude * n[x]);
+      for (int c = 0; c < 3; ++c)
+        row[x][c] = cv::saturate_cast<uchar>(row[x][c] + amplitude * n[x]);
   }
 }
 
-void add_speckles(cv::Mat& img, Rng& rng, int count, int max_radius, cv::Scalar base, double spread) {
+void add_speckles(cv::Mat& img, Rng& rng, int count, int max_radius, cv::Scalar base,
+                  double spread) {
   for (int i = 0; i < count; ++i) {
     cv::Point p(static_cast<int>(rng.below(img.cols)), static_cast<int>(rng.below(img.rows)));
     int r = 1 + static_cast<int>(rng.below(max_radius));
@@ -41,15 +46,19 @@ void add_speckles(cv::Mat& img, Rng& rng, int count, int max_radius, cv::Scalar 
   }
 }
 
-void add_text(cv::Mat& img, Rng& rng, const std::string& text, cv::Point at, double scale, cv::Scalar colour,
-              int thickness) {
+void add_text(cv::Mat& img, Rng& rng, const std::string& text, cv::Point at, double scale,
+              cv::Scalar colour, int thickness) {
   (void)rng;
   cv::putText(img, text, at, cv::FONT_HERSHEY_DUPLEX, scale, colour, thickness, cv::LINE_8);
 }
 
-std::string code(Rng& rng, const char* prefix) { return prefix + std::to_string(100 + rng.below(900)); }
+std::string code(Rng& rng, const char* prefix) {
+  return prefix + std::to_string(100 + rng.below(900));
+}
 
-cv::Mat filled(int size, cv::Scalar c) { return cv::Mat(size, size, CV_8UC3, c); }
+cv::Mat filled(int size, cv::Scalar c) {
+  return cv::Mat(size, size, CV_8UC3, c);
+}
 
 // --- the depot ------------------------------------------------------------
 
@@ -62,7 +71,8 @@ cv::Mat concrete(Rng& rng, int n) {
   for (int i = 0; i < 6; ++i) {  // cracks
     cv::Point p(static_cast<int>(rng.below(n)), static_cast<int>(rng.below(n)));
     for (int k = 0; k < 8; ++k) {
-      cv::Point q = p + cv::Point(static_cast<int>(rng.uniform(-30, 30)), static_cast<int>(rng.uniform(-30, 30)));
+      cv::Point q = p + cv::Point(static_cast<int>(rng.uniform(-30, 30)),
+                                  static_cast<int>(rng.uniform(-30, 30)));
       cv::line(img, p, q, bgr(70, 70, 68), 1, cv::LINE_8);
       p = q;
     }
@@ -113,8 +123,8 @@ cv::Mat wood(Rng& rng, int n, cv::Scalar base, bool stencil) {
     }
     cv::line(img, cv::Point(0, rect.y), cv::Point(n, rect.y), base * 0.4, 2);
     for (int k = 0; k < 2; ++k)  // nails
-      cv::circle(img, cv::Point(static_cast<int>(n * (0.08 + 0.84 * k)), rect.y + rect.height / 2), 3,
-                 bgr(50, 50, 55), cv::FILLED);
+      cv::circle(img, cv::Point(static_cast<int>(n * (0.08 + 0.84 * k)), rect.y + rect.height / 2),
+                 3, bgr(50, 50, 55), cv::FILLED);
   }
   cv::rectangle(img, cv::Rect(0, 0, n, n), base * 0.45, std::max(3, n / 40));
   if (stencil) {
@@ -134,7 +144,8 @@ cv::Mat burlap(Rng& rng, int n, cv::Scalar base) {
   add_value_noise(img, rng, 12, 18);
   cv::rectangle(img, cv::Rect(n / 5, n / 4, n * 3 / 5, n / 2), bgr(30, 90, 40), 3);
   add_text(img, rng, "FEED", cv::Point(n / 4, n / 2), n / 150.0, bgr(30, 90, 40), 2);
-  add_text(img, rng, code(rng, "25KG "), cv::Point(n / 4, n * 2 / 3), n / 280.0, bgr(40, 40, 40), 1);
+  add_text(img, rng, code(rng, "25KG "), cv::Point(n / 4, n * 2 / 3), n / 280.0, bgr(40, 40, 40),
+           1);
   return img;
 }
 
@@ -142,12 +153,14 @@ cv::Mat painted_metal(Rng& rng, int n, cv::Scalar base) {
   cv::Mat img = filled(n, base);
   add_value_noise(img, rng, 16, 12);
   add_speckles(img, rng, n / 2, 2, bgr(60, 60, 60), 30);  // chipped paint
-  for (int i = 0; i < 10; ++i) {                        // punched holes of a rack upright
+  for (int i = 0; i < 10; ++i) {                          // punched holes of a rack upright
     int y = (i * n) / 10 + n / 20;
     cv::rectangle(img, cv::Rect(n / 2 - 5, y, 10, 14), bgr(30, 30, 30), cv::FILLED);
   }
-  cv::rectangle(img, cv::Rect(n / 10, n / 10, n / 3, n / 6), bgr(240, 240, 235), cv::FILLED);  // label
-  add_text(img, rng, code(rng, "A-"), cv::Point(n / 10 + 4, n / 10 + n / 8), n / 400.0, bgr(10, 10, 10), 1);
+  cv::rectangle(img, cv::Rect(n / 10, n / 10, n / 3, n / 6), bgr(240, 240, 235),
+                cv::FILLED);  // label
+  add_text(img, rng, code(rng, "A-"), cv::Point(n / 10 + 4, n / 10 + n / 8), n / 400.0,
+           bgr(10, 10, 10), 1);
   return img;
 }
 
@@ -156,13 +169,15 @@ cv::Mat monitor(Rng& rng, int n) {
   cv::Rect screen(n / 12, n / 12, n * 10 / 12, n * 10 / 12);
   img(screen).setTo(bgr(30, 60, 110));
   for (int w = 0; w < 4; ++w) {  // windows
-    cv::Rect r(screen.x + static_cast<int>(rng.below(screen.width / 2)), screen.y + static_cast<int>(rng.below(screen.height / 2)),
-               screen.width / 3, screen.height / 3);
+    cv::Rect r(screen.x + static_cast<int>(rng.below(screen.width / 2)),
+               screen.y + static_cast<int>(rng.below(screen.height / 2)), screen.width / 3,
+               screen.height / 3);
     cv::rectangle(img, r, bgr(230, 230, 225), cv::FILLED);
     cv::rectangle(img, cv::Rect(r.x, r.y, r.width, 10), bgr(60, 90, 160), cv::FILLED);
     for (int l = 0; l < 5; ++l)
       cv::line(img, cv::Point(r.x + 6, r.y + 20 + l * 10),
-               cv::Point(r.x + 6 + static_cast<int>(rng.below(r.width - 12)), r.y + 20 + l * 10), bgr(40, 40, 40), 2);
+               cv::Point(r.x + 6 + static_cast<int>(rng.below(r.width - 12)), r.y + 20 + l * 10),
+               bgr(40, 40, 40), 2);
   }
   return img;
 }
@@ -181,7 +196,8 @@ cv::Mat poster(Rng& rng, int n) {
 
 cv::Mat door(Rng& rng, int n) {
   cv::Mat img = filled(n, bgr(70, 95, 80));
-  for (int i = 1; i < 8; ++i) cv::line(img, cv::Point(0, i * n / 8), cv::Point(n, i * n / 8), bgr(50, 70, 60), 3);
+  for (int i = 1; i < 8; ++i)
+    cv::line(img, cv::Point(0, i * n / 8), cv::Point(n, i * n / 8), bgr(50, 70, 60), 3);
   cv::rectangle(img, cv::Rect(n / 3, n / 12, n / 3, n / 8), bgr(240, 200, 30), cv::FILLED);
   add_text(img, rng, "EXIT", cv::Point(n / 3 + 8, n / 12 + n / 10), n / 300.0, bgr(10, 10, 10), 2);
   add_value_noise(img, rng, 16, 10);
@@ -191,7 +207,7 @@ cv::Mat door(Rng& rng, int n) {
 // --- actors ---------------------------------------------------------------
 
 cv::Mat shirt(Rng& rng, int n, int style) {
-  static const cv::Scalar kColours[] = {bgr(200, 40, 40), bgr(40, 80, 180), bgr(40, 140, 60),
+  static const cv::Scalar kColours[] = {bgr(200, 40, 40),  bgr(40, 80, 180),  bgr(40, 140, 60),
                                         bgr(230, 200, 40), bgr(240, 120, 20), bgr(90, 90, 95)};
   cv::Scalar base = kColours[style % 6];
   cv::Mat img = filled(n, base);
@@ -203,7 +219,8 @@ cv::Mat shirt(Rng& rng, int n, int style) {
       }
       break;
     case 1:  // stripes
-      for (int i = 0; i < n; i += n / 10) cv::rectangle(img, cv::Rect(0, i, n, n / 20), bgr(245, 245, 245), cv::FILLED);
+      for (int i = 0; i < n; i += n / 10)
+        cv::rectangle(img, cv::Rect(0, i, n, n / 20), bgr(245, 245, 245), cv::FILLED);
       break;
     case 2:  // logo shirt
       cv::circle(img, cv::Point(n / 2, n / 2), n / 5, bgr(250, 250, 250), cv::FILLED);
@@ -218,7 +235,9 @@ cv::Mat shirt(Rng& rng, int n, int style) {
     default:  // checks
       for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 8; ++x)
-          if ((x + y) % 2) cv::rectangle(img, cv::Rect(x * n / 8, y * n / 8, n / 8, n / 8), bgr(160, 160, 170), cv::FILLED);
+          if ((x + y) % 2)
+            cv::rectangle(img, cv::Rect(x * n / 8, y * n / 8, n / 8, n / 8), bgr(160, 160, 170),
+                          cv::FILLED);
   }
   add_value_noise(img, rng, 20, 12);
   add_speckles(img, rng, n / 4, 2, base * 0.5, 20);
@@ -227,7 +246,8 @@ cv::Mat shirt(Rng& rng, int n, int style) {
 
 cv::Mat denim(Rng& rng, int n, cv::Scalar base) {
   cv::Mat img = filled(n, base);
-  for (int i = -n; i < n; i += 3) cv::line(img, cv::Point(i, 0), cv::Point(i + n, n), base * 0.8, 1);
+  for (int i = -n; i < n; i += 3)
+    cv::line(img, cv::Point(i, 0), cv::Point(i + n, n), base * 0.8, 1);
   add_value_noise(img, rng, 10, 18);
   cv::rectangle(img, cv::Rect(n / 4, n / 5, n / 5, n / 6), base * 0.6, 2);  // pocket
   add_speckles(img, rng, n / 3, 2, base * 1.3, 15);
@@ -238,7 +258,9 @@ cv::Mat skin(Rng& rng, int n, cv::Scalar base) {
   cv::Mat img = filled(n, base);
   add_value_noise(img, rng, 6, 10);
   // Eyes and mouth give the head some structure whatever the mapping.
-  for (int k = 0; k < 2; ++k) cv::circle(img, cv::Point(n / 3 + k * n / 3, n / 2 - n / 10), n / 18, bgr(30, 25, 25), cv::FILLED);
+  for (int k = 0; k < 2; ++k)
+    cv::circle(img, cv::Point(n / 3 + k * n / 3, n / 2 - n / 10), n / 18, bgr(30, 25, 25),
+               cv::FILLED);
   cv::line(img, cv::Point(n / 3, n * 2 / 3), cv::Point(n * 2 / 3, n * 2 / 3), bgr(120, 50, 50), 3);
   return img;
 }
@@ -247,16 +269,19 @@ cv::Mat fur(Rng& rng, int n, cv::Scalar base, cv::Scalar patch, bool stripes) {
   cv::Mat img = filled(n, base);
   add_value_noise(img, rng, 10, 25);
   if (stripes) {
-    for (int i = 0; i < n; i += n / 9) cv::line(img, cv::Point(0, i), cv::Point(n, i + n / 12), patch, n / 40);
+    for (int i = 0; i < n; i += n / 9)
+      cv::line(img, cv::Point(0, i), cv::Point(n, i + n / 12), patch, n / 40);
   } else {
     for (int i = 0; i < 7; ++i)
       cv::ellipse(img, cv::Point(static_cast<int>(rng.below(n)), static_cast<int>(rng.below(n))),
-                  cv::Size(n / 10 + static_cast<int>(rng.below(n / 8)), n / 12 + static_cast<int>(rng.below(n / 10))),
+                  cv::Size(n / 10 + static_cast<int>(rng.below(n / 8)),
+                           n / 12 + static_cast<int>(rng.below(n / 10))),
                   rng.uniform(0, 180), 0, 360, patch, cv::FILLED);
   }
   for (int i = 0; i < n * 2; ++i) {  // hair strokes
     cv::Point p(static_cast<int>(rng.below(n)), static_cast<int>(rng.below(n)));
-    cv::line(img, p, p + cv::Point(static_cast<int>(rng.uniform(-4, 4)), 5), jitter(rng, base * 0.6, 20), 1);
+    cv::line(img, p, p + cv::Point(static_cast<int>(rng.uniform(-4, 4)), 5),
+             jitter(rng, base * 0.6, 20), 1);
   }
   return img;
 }
@@ -293,15 +318,20 @@ TextureSet make_depot_textures(uint64_t seed, int cube, int plane) {
   // Objects (cube maps).
   tex("crate_wood", wood(rng, cube, bgr(185, 140, 90), true), true), mat("crate", "crate_wood");
   tex("crate_dark", wood(rng, cube, bgr(130, 95, 60), true), true), mat("crate_dark", "crate_dark");
-  tex("pallet_wood", wood(rng, cube, bgr(200, 170, 120), false), true), mat("pallet", "pallet_wood");
+  tex("pallet_wood", wood(rng, cube, bgr(200, 170, 120), false), true),
+      mat("pallet", "pallet_wood");
   tex("shelf_wood", wood(rng, cube, bgr(170, 150, 110), false), true), mat("shelf", "shelf_wood");
   tex("desk_top", wood(rng, cube, bgr(150, 110, 80), false), true), mat("desk", "desk_top");
   tex("burlap", burlap(rng, cube, bgr(190, 165, 120)), true), mat("sack", "burlap");
-  tex("burlap_white", burlap(rng, cube, bgr(225, 220, 205)), true), mat("sack_white", "burlap_white");
-  tex("rack_orange", painted_metal(rng, cube, bgr(230, 110, 30)), true), mat("rack_paint", "rack_orange");
+  tex("burlap_white", burlap(rng, cube, bgr(225, 220, 205)), true),
+      mat("sack_white", "burlap_white");
+  tex("rack_orange", painted_metal(rng, cube, bgr(230, 110, 30)), true),
+      mat("rack_paint", "rack_orange");
   tex("rack_blue", painted_metal(rng, cube, bgr(40, 70, 150)), true), mat("rack_beam", "rack_blue");
-  tex("barrel_blue", painted_metal(rng, cube, bgr(30, 60, 170)), true), mat("barrel", "barrel_blue");
-  tex("bench_green", painted_metal(rng, cube, bgr(60, 110, 70)), true), mat("bench_metal", "bench_green");
+  tex("barrel_blue", painted_metal(rng, cube, bgr(30, 60, 170)), true),
+      mat("barrel", "barrel_blue");
+  tex("bench_green", painted_metal(rng, cube, bgr(60, 110, 70)), true),
+      mat("bench_metal", "bench_green");
   tex("monitor", monitor(rng, cube), true), mat("monitor", "monitor");
   tex("poster", poster(rng, cube), true), mat("poster", "poster");
   tex("door", door(rng, cube), true), mat("door", "door");
@@ -322,22 +352,35 @@ TextureSet make_depot_textures(uint64_t seed, int cube, int plane) {
     std::string n = "skin_" + std::to_string(i);
     tex(n, skin(rng, cube, skins[i]), true), mat(n, n);
   }
-  tex("hair_0", fur(rng, cube, bgr(40, 30, 25), bgr(20, 15, 12), true), true), mat("hair_0", "hair_0");
-  tex("hair_1", fur(rng, cube, bgr(120, 80, 40), bgr(90, 60, 30), true), true), mat("hair_1", "hair_1");
-  tex("shoes", fur(rng, cube, bgr(35, 30, 30), bgr(70, 60, 50), false), true), mat("shoes", "shoes");
-  tex("fur_dog_0", fur(rng, cube, bgr(150, 100, 50), bgr(240, 235, 225), false), true), mat("fur_dog_0", "fur_dog_0");
-  tex("fur_dog_1", fur(rng, cube, bgr(30, 28, 25), bgr(190, 140, 80), false), true), mat("fur_dog_1", "fur_dog_1");
-  tex("fur_cat_0", fur(rng, cube, bgr(200, 130, 60), bgr(120, 70, 30), true), true), mat("fur_cat_0", "fur_cat_0");
-  tex("fur_cat_1", fur(rng, cube, bgr(130, 130, 135), bgr(60, 60, 65), true), true), mat("fur_cat_1", "fur_cat_1");
-  tex("pig_skin", fur(rng, cube, bgr(240, 175, 170), bgr(180, 110, 110), false), true), mat("pig_skin", "pig_skin");
-  tex("feathers_0", fur(rng, cube, bgr(120, 110, 100), bgr(40, 35, 30), true), true), mat("feathers_0", "feathers_0");
-  tex("feathers_1", fur(rng, cube, bgr(220, 220, 215), bgr(60, 60, 60), true), true), mat("feathers_1", "feathers_1");
+  tex("hair_0", fur(rng, cube, bgr(40, 30, 25), bgr(20, 15, 12), true), true),
+      mat("hair_0", "hair_0");
+  tex("hair_1", fur(rng, cube, bgr(120, 80, 40), bgr(90, 60, 30), true), true),
+      mat("hair_1", "hair_1");
+  tex("shoes", fur(rng, cube, bgr(35, 30, 30), bgr(70, 60, 50), false), true),
+      mat("shoes", "shoes");
+  tex("fur_dog_0", fur(rng, cube, bgr(150, 100, 50), bgr(240, 235, 225), false), true),
+      mat("fur_dog_0", "fur_dog_0");
+  tex("fur_dog_1", fur(rng, cube, bgr(30, 28, 25), bgr(190, 140, 80), false), true),
+      mat("fur_dog_1", "fur_dog_1");
+  tex("fur_cat_0", fur(rng, cube, bgr(200, 130, 60), bgr(120, 70, 30), true), true),
+      mat("fur_cat_0", "fur_cat_0");
+  tex("fur_cat_1", fur(rng, cube, bgr(130, 130, 135), bgr(60, 60, 65), true), true),
+      mat("fur_cat_1", "fur_cat_1");
+  tex("pig_skin", fur(rng, cube, bgr(240, 175, 170), bgr(180, 110, 110), false), true),
+      mat("pig_skin", "pig_skin");
+  tex("feathers_0", fur(rng, cube, bgr(120, 110, 100), bgr(40, 35, 30), true), true),
+      mat("feathers_0", "feathers_0");
+  tex("feathers_1", fur(rng, cube, bgr(220, 220, 215), bgr(60, 60, 60), true), true),
+      mat("feathers_1", "feathers_1");
   mat("snout", "");
-  set.materials.back().rgba[0] = 0.25, set.materials.back().rgba[1] = 0.18, set.materials.back().rgba[2] = 0.16;
+  set.materials.back().rgba[0] = 0.25, set.materials.back().rgba[1] = 0.18,
+  set.materials.back().rgba[2] = 0.16;
   mat("beak", "");
-  set.materials.back().rgba[0] = 0.95, set.materials.back().rgba[1] = 0.6, set.materials.back().rgba[2] = 0.1;
+  set.materials.back().rgba[0] = 0.95, set.materials.back().rgba[1] = 0.6,
+  set.materials.back().rgba[2] = 0.1;
   mat("dark_metal", "");
-  set.materials.back().rgba[0] = 0.2, set.materials.back().rgba[1] = 0.2, set.materials.back().rgba[2] = 0.22;
+  set.materials.back().rgba[0] = 0.2, set.materials.back().rgba[1] = 0.2,
+  set.materials.back().rgba[2] = 0.22;
   return set;
 }
 

@@ -17,7 +17,8 @@ const std::vector<int8_t>& noise_table() {
   static const std::vector<int8_t> table = [] {
     std::vector<int8_t> t(1 << 20);
     Rng rng(0x6e015e);
-    for (auto& v : t) v = static_cast<int8_t>(std::clamp(std::lround(16.0 * rng.normal()), -127L, 127L));
+    for (auto& v : t)
+      v = static_cast<int8_t>(std::clamp(std::lround(16.0 * rng.normal()), -127L, 127L));
     return t;
   }();
   return table;
@@ -25,7 +26,8 @@ const std::vector<int8_t>& noise_table() {
 
 }  // namespace
 
-cv::Mat apply_depth_model(const cv::Mat& depth, const SensorSpec& sensor, double focal, uint64_t seed) {
+cv::Mat apply_depth_model(const cv::Mat& depth, const SensorSpec& sensor, double focal,
+                          uint64_t seed) {
   cv::Mat out(depth.size(), CV_32F, cv::Scalar(0));
   Rng rng(seed);
   const double fb = focal * sensor.baseline;  // disparity (px) = fb / z
@@ -56,7 +58,8 @@ cv::Mat apply_depth_model(const cv::Mat& depth, const SensorSpec& sensor, double
         continue;
       }
       double disparity = fb_sensor / z + sensor.disparity_noise * (noise[x] / 16.0);
-      if (sensor.disparity_step > 0) disparity = std::round(disparity / sensor.disparity_step) * sensor.disparity_step;
+      if (sensor.disparity_step > 0)
+        disparity = std::round(disparity / sensor.disparity_step) * sensor.disparity_step;
       if (disparity > 0) o[x] = static_cast<float>(fb_sensor / disparity);
     }
   }

@@ -12,7 +12,8 @@
 namespace depot::sim {
 
 // depth: CV_32F metres (0 = none) -> noisy CV_32F metres (0 = no data).
-cv::Mat apply_depth_model(const cv::Mat& depth, const SensorSpec& sensor, double focal, uint64_t seed);
+cv::Mat apply_depth_model(const cv::Mat& depth, const SensorSpec& sensor, double focal,
+                          uint64_t seed);
 
 // Adds zero-mean noise of `sigma` grey levels to each channel, in place.
 void apply_rgb_noise(cv::Mat& bgr, double sigma, uint64_t seed);

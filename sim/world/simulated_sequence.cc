@@ -15,7 +15,8 @@ std::vector<std::pair<double, double>> frame_timestamps(const Scenario& s) {
     // An association file gives (rgb, depth) pairs; any other TUM file its
     // first column for both.
     if (detect_tum_file_kind(s.timestamps.file) == TumFileKind::kAssociation) {
-      for (const auto& a : read_associations(s.timestamps.file)) out.emplace_back(a.rgb_timestamp, a.depth_timestamp);
+      for (const auto& a : read_associations(s.timestamps.file))
+        out.emplace_back(a.rgb_timestamp, a.depth_timestamp);
     } else {
       for (double t : read_timestamps(s.timestamps.file)) out.emplace_back(t, t);
     }
@@ -37,12 +38,14 @@ SimulatedSequence::SimulatedSequence(const Scenario& scenario, GlBackend backend
   SceneLayout layout = load_scene_layout(scenario_.scene_path);
   world_ = std::make_unique<World>(build_scene(layout, classes_, scenario_));
   motion_ = std::make_unique<CameraMotion>(scenario_.motion, scenario_.seed, stamps_.front().first);
-  renderer_ = std::make_unique<Renderer>(world_->model(), world_->camera_id(), scenario_.camera, backend,
-                                         world_->geom_instances());
+  renderer_ = std::make_unique<Renderer>(world_->model(), world_->camera_id(), scenario_.camera,
+                                         backend, world_->geom_instances());
   for (const Instance& inst : world_->instances())
-    if (inst.kind == InstanceKind::kPushable || inst.kind == InstanceKind::kActor) tracked_.push_back(&inst);
+    if (inst.kind == InstanceKind::kPushable || inst.kind == InstanceKind::kActor)
+      tracked_.push_back(&inst);
   previous_bodies_.resize(tracked_.size());
-  for (size_t i = 0; i < tracked_.size(); ++i) world_->body_poses(*tracked_[i], previous_bodies_[i]);
+  for (size_t i = 0; i < tracked_.size(); ++i)
+    world_->body_poses(*tracked_[i], previous_bodies_[i]);
 }
 
 bool SimulatedSequence::next(RenderedFrame& frame, FrameTruth& truth, SequenceTimings* timings) {
@@ -56,7 +59,8 @@ bool SimulatedSequence::next(RenderedFrame& frame, FrameTruth& truth, SequenceTi
   const Pose world_camera = motion_->pose_at(t_rgb);
   world_->set_camera_pose(world_camera);
   if (timings)
-    timings->physics_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    timings->physics_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   renderer_->render(world_->data(), frame, timings ? &timings->render : nullptr);
 
   const Pose dataset_from_world = motion_->world_from_dataset().inverse();
@@ -72,9 +76,11 @@ bool SimulatedSequence::next(RenderedFrame& frame, FrameTruth& truth, SequenceTi
     s.id = tracked_[i]->id;
     s.pose = dataset_from_world * world_->instance_pose(*tracked_[i]);
     for (size_t b = 0; b < bodies.size(); ++b) {
-      s.max_translation = std::max(s.max_translation, translation_between(bodies[b], previous_bodies_[i][b]));
+      s.max_translation =
+          std::max(s.max_translation, translation_between(bodies[b], previous_bodies_[i][b]));
       s.max_rotation_deg =
-          std::max(s.max_rotation_deg, rotation_angle_between(bodies[b], previous_bodies_[i][b]) * 180.0 / M_PI);
+          std::max(s.max_rotation_deg,
+                   rotation_angle_between(bodies[b], previous_bodies_[i][b]) * 180.0 / M_PI);
     }
     s.moving = s.max_translation > kMovingTranslation || s.max_rotation_deg > kMovingRotationDeg;
     previous_bodies_[i] = bodies;

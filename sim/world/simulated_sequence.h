@@ -62,8 +62,8 @@ class SimulatedSequence {
   std::unique_ptr<Renderer> renderer_;
   std::unique_ptr<CameraMotion> motion_;
   std::vector<std::pair<double, double>> stamps_;
-  std::vector<const Instance*> tracked_;             // pushables and actors
-  std::vector<std::vector<Pose>> previous_bodies_;   // per tracked instance
+  std::vector<const Instance*> tracked_;            // pushables and actors
+  std::vector<std::vector<Pose>> previous_bodies_;  // per tracked instance
   int next_ = 0;
 };
 

@@ -16,7 +16,8 @@ Pose body_pose(const mjModel* m, const mjData* d, int body) {
   (void)m;
   Eigen::Matrix3d r;
   for (int i = 0; i < 9; ++i) r(i / 3, i % 3) = d->xmat[9 * body + i];
-  return make_pose(r, Eigen::Vector3d(d->xpos[3 * body], d->xpos[3 * body + 1], d->xpos[3 * body + 2]));
+  return make_pose(
+      r, Eigen::Vector3d(d->xpos[3 * body], d->xpos[3 * body + 1], d->xpos[3 * body + 2]));
 }
 
 void set_mocap(mjData* d, int mocap, const Pose& p) {
@@ -37,7 +38,9 @@ void mujoco_error(const char* msg) {
   std::_Exit(1);
 }
 
-void mujoco_warning(const char* msg) { std::fprintf(stderr, "depot: warning: MuJoCo: %s\n", msg); }
+void mujoco_warning(const char* msg) {
+  std::fprintf(stderr, "depot: warning: MuJoCo: %s\n", msg);
+}
 
 }  // namespace
 
@@ -80,7 +83,8 @@ World::World(SceneModel scene) : scene_(std::move(scene)) {
       int b = name == "world" ? 0 : mj_name2id(model_, mjOBJ_BODY, name.c_str());
       if (b < 0) fail("scene", "body '" + name + "' missing from compiled model");
       instance_bodies_[i].push_back(b);
-      if (inst.actor >= 0 && model_->body_mocapid[b] >= 0) actor_mocap_[inst.actor].push_back(model_->body_mocapid[b]);
+      if (inst.actor >= 0 && model_->body_mocapid[b] >= 0)
+        actor_mocap_[inst.actor].push_back(model_->body_mocapid[b]);
     }
   }
   // Let pushables settle on the floor before time starts, so contact
@@ -102,7 +106,8 @@ std::vector<uint16_t> World::geom_instances() const {
   for (size_t i = 0; i < instance_bodies_.size(); ++i)
     for (int b : instance_bodies_[i]) body_instance[b] = scene_.instances[i].id;
   std::vector<uint16_t> out(model_->ngeom, 0);
-  for (int g = 0; g < model_->ngeom; ++g) out[g] = static_cast<uint16_t>(body_instance[model_->geom_bodyid[g]]);
+  for (int g = 0; g < model_->ngeom; ++g)
+    out[g] = static_cast<uint16_t>(body_instance[model_->geom_bodyid[g]]);
   return out;
 }
 
@@ -143,9 +148,12 @@ Pose World::camera_pose() const {
 
 Pose World::instance_pose(const Instance& inst) const {
   switch (inst.kind) {
-    case InstanceKind::kActor: return scene_.actors[inst.actor]->root_pose(actor_time_);
-    case InstanceKind::kPushable: return body_pose(model_, data_, instance_bodies_[inst.id - 1][0]);
-    default: return inst.pose;
+    case InstanceKind::kActor:
+      return scene_.actors[inst.actor]->root_pose(actor_time_);
+    case InstanceKind::kPushable:
+      return body_pose(model_, data_, instance_bodies_[inst.id - 1][0]);
+    default:
+      return inst.pose;
   }
 }
 

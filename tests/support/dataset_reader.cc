@@ -33,7 +33,9 @@ cv::Mat Dataset::labels_image(size_t i) const {
   return raw;
 }
 
-cv::Mat Dataset::rgb(size_t i) const { return cv::imread(root + "/" + frames.at(i).rgb_path, cv::IMREAD_COLOR); }
+cv::Mat Dataset::rgb(size_t i) const {
+  return cv::imread(root + "/" + frames.at(i).rgb_path, cv::IMREAD_COLOR);
+}
 
 const ObjectInfo& Dataset::object(const std::string& name) const {
   for (const auto& [id, o] : objects)
@@ -73,7 +75,8 @@ Dataset read_dataset(const std::string& root) {
     info.pose = pose_of(o["pose"]);
     auto mn = o["extent"]["min"];
     auto mx = o["extent"]["max"];
-    info.extent = Eigen::AlignedBox3d(Eigen::Vector3d(mn[0], mn[1], mn[2]), Eigen::Vector3d(mx[0], mx[1], mx[2]));
+    info.extent = Eigen::AlignedBox3d(Eigen::Vector3d(mn[0], mn[1], mn[2]),
+                                      Eigen::Vector3d(mx[0], mx[1], mx[2]));
     d.objects[info.id] = info;
   }
 
@@ -94,7 +97,8 @@ Dataset read_dataset(const std::string& root) {
     double v[7];
     in >> stamp >> id >> v[0] >> v[1] >> v[2] >> v[3] >> v[4] >> v[5] >> v[6] >> moving;
     ObjectPose p;
-    p.pose = make_pose(Eigen::Quaterniond(v[6], v[3], v[4], v[5]), Eigen::Vector3d(v[0], v[1], v[2]));
+    p.pose =
+        make_pose(Eigen::Quaterniond(v[6], v[3], v[4], v[5]), Eigen::Vector3d(v[0], v[1], v[2]));
     p.moving = moving != 0;
     d.object_poses.at(frame_of.at(stamp))[id] = p;
   }
@@ -131,7 +135,8 @@ std::string compare_trees(const std::string& a, const std::string& b) {
   if (files_a != files_b) return "different file lists";
   for (const auto& f : files_a) {
     std::ifstream fa(a + "/" + f, std::ios::binary), fb(b + "/" + f, std::ios::binary);
-    std::string ca((std::istreambuf_iterator<char>(fa)), {}), cb((std::istreambuf_iterator<char>(fb)), {});
+    std::string ca((std::istreambuf_iterator<char>(fa)), {}),
+        cb((std::istreambuf_iterator<char>(fb)), {});
     if (ca != cb) return f;
   }
   return "";

@@ -13,7 +13,9 @@ std::string scenario_path(const std::string& name) {
   return std::string(DEPOT_SOURCE_DIR) + "/scenarios/" + name + ".yaml";
 }
 
-std::string depot_binary() { return std::string(DEPOT_BINARY_DIR) + "/tools/depot/depot"; }
+std::string depot_binary() {
+  return std::string(DEPOT_BINARY_DIR) + "/tools/depot/depot";
+}
 
 std::string render_small(const SmallRender& r) {
   sim::Scenario scenario = sim::load_scenario(scenario_path(r.scenario));

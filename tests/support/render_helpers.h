@@ -7,9 +7,14 @@
 namespace depot::test {
 
 struct SmallRender {
-  SmallRender(std::string scenario_, int frames_, int width_, bool ideal_, std::optional<uint64_t> seed_ = {},
-              bool yolo_ = false)
-      : scenario(std::move(scenario_)), frames(frames_), width(width_), ideal(ideal_), seed(seed_), yolo(yolo_) {}
+  SmallRender(std::string scenario_, int frames_, int width_, bool ideal_,
+              std::optional<uint64_t> seed_ = {}, bool yolo_ = false)
+      : scenario(std::move(scenario_)),
+        frames(frames_),
+        width(width_),
+        ideal(ideal_),
+        seed(seed_),
+        yolo(yolo_) {}
   std::string scenario;  // shipped scenario name or YAML path
   int frames;
   int width;

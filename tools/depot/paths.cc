@@ -18,7 +18,8 @@ std::string resolve_scenario(const std::string& arg) {
   std::error_code ec;
   if (fs::is_regular_file(arg, ec)) return arg;
   fs::path shipped = fs::path(scenarios_folder()) / (arg + ".yaml");
-  if (fs::path(arg).extension() != ".yaml" && fs::is_regular_file(shipped, ec)) return shipped.string();
+  if (fs::path(arg).extension() != ".yaml" && fs::is_regular_file(shipped, ec))
+    return shipped.string();
   fail(arg, "scenario not found (neither a file nor a shipped scenario; see `depot sim list`)");
 }
 

@@ -46,10 +46,13 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
   r.progress = !a.quiet;
   sim::RenderSummary s = sim::render_dataset(scenario, r);
   std::printf(
-      "rendered %d frames of %s to %s in %.1f s (%.1f fps end to end; per frame: physics %.1f ms, rgb+depth %.1f ms, "
-      "labels %.1f ms, convert %.1f ms; sensor model %.1f ms and PNG writing %.1f ms on writer threads; %.1f MB)\n",
-      s.frames, scenario.name.c_str(), s.output.c_str(), s.seconds, s.frames / s.seconds, s.physics_ms,
-      s.color_depth_ms, s.segmentation_ms, s.convert_ms, s.sensor_ms, s.encode_write_ms, s.bytes / 1e6);
+      "rendered %d frames of %s to %s in %.1f s (%.1f fps end to end; per frame: physics %.1f ms, "
+      "rgb+depth %.1f ms, "
+      "labels %.1f ms, convert %.1f ms; sensor model %.1f ms and PNG writing %.1f ms on writer "
+      "threads; %.1f MB)\n",
+      s.frames, scenario.name.c_str(), s.output.c_str(), s.seconds, s.frames / s.seconds,
+      s.physics_ms, s.color_depth_ms, s.segmentation_ms, s.convert_ms, s.sensor_ms,
+      s.encode_write_ms, s.bytes / 1e6);
 }
 
 void run_list() {
@@ -61,8 +64,8 @@ void run_list() {
       if (sim::is_living_actor(a.type)) ++living;
       if (sim::is_pushable_actor(a.type)) ++pushables;
     }
-    std::printf("%-28s %4d frames  motion %-10s  %d actors, %d pushables  %s\n", name.c_str(), s.frames,
-                s.motion.type.c_str(), living, pushables, s.description.c_str());
+    std::printf("%-28s %4d frames  motion %-10s  %d actors, %d pushables  %s\n", name.c_str(),
+                s.frames, s.motion.type.c_str(), living, pushables, s.description.c_str());
   }
 }
 
@@ -73,19 +76,31 @@ void register_sim_commands(CLI::App& app) {
   sim->require_subcommand(1);
 
   auto args = std::make_shared<RenderArgs>();
-  CLI::App* render = sim->add_subcommand("render", "Render a scenario to a TUM RGB-D dataset with labels");
-  render->add_option("scenario", args->scenario, "Scenario YAML file, or the name of a shipped scenario")->required();
-  render->add_option("-o,--output", args->output, "Output dataset folder (appears only when complete)")->required();
-  render->add_option("--frames", args->frames, "Number of frames (default: the scenario's)")->check(CLI::Range(1, 1000000));
+  CLI::App* render =
+      sim->add_subcommand("render", "Render a scenario to a TUM RGB-D dataset with labels");
+  render
+      ->add_option("scenario", args->scenario,
+                   "Scenario YAML file, or the name of a shipped scenario")
+      ->required();
+  render
+      ->add_option("-o,--output", args->output,
+                   "Output dataset folder (appears only when complete)")
+      ->required();
+  render->add_option("--frames", args->frames, "Number of frames (default: the scenario's)")
+      ->check(CLI::Range(1, 1000000));
   render->add_option("--seed", args->seed, "Random seed (default: the scenario's)");
-  render->add_option("--load", args->load, "Dynamic load factor: number, size and speed of actors (0..4)")
+  render
+      ->add_option("--load", args->load,
+                   "Dynamic load factor: number, size and speed of actors (0..4)")
       ->check(CLI::Range(0.0, 4.0));
-  render->add_option("--gl", args->gl, "Off-screen GL backend")->check(CLI::IsMember({"osmesa", "egl"}));
+  render->add_option("--gl", args->gl, "Off-screen GL backend")
+      ->check(CLI::IsMember({"osmesa", "egl"}));
   render->add_option("--width", args->width, "Image width; height and intrinsics scale with it")
       ->check(CLI::Range(16, 4096));
   render->add_flag("--ideal", args->ideal, "No sensor model: exact depth and colour");
   render->add_flag("--overwrite", args->overwrite, "Replace an existing output folder");
-  render->add_flag("--yolo", args->yolo, "Also export a YOLO training set (yolo/images, yolo/labels, data.yaml)");
+  render->add_flag("--yolo", args->yolo,
+                   "Also export a YOLO training set (yolo/images, yolo/labels, data.yaml)");
   render->add_option("--writers", args->writers, "PNG writer threads")->check(CLI::Range(1, 32));
   render->add_flag("-q,--quiet", args->quiet, "No progress bar");
   render->callback([args, render] { run_render(*args, *render); });
@@ -96,7 +111,8 @@ void register_sim_commands(CLI::App& app) {
   auto preview_dataset = std::make_shared<std::string>();
   auto preview_out = std::make_shared<std::string>();
   auto preview_opts = std::make_shared<sim::ContactSheetOptions>();
-  CLI::App* preview = sim->add_subcommand("preview", "Write a contact sheet (RGB | depth | labels) of a dataset");
+  CLI::App* preview =
+      sim->add_subcommand("preview", "Write a contact sheet (RGB | depth | labels) of a dataset");
   preview->add_option("dataset", *preview_dataset, "Dataset folder")->required();
   preview->add_option("-o,--output", *preview_out, "Output image (PNG)")->required();
   preview->add_option("--rows", preview_opts->rows, "Frames shown")->check(CLI::Range(1, 50));

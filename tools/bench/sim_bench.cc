@@ -1,0 +1,122 @@
+// depot_sim_bench: frames per second of the simulator's stages and end to
+// end (render + labels + writing) at the scenario's resolution. Figures are
+// also given as ratios to the raw MuJoCo RGB+depth render measured in the
+// same run, so they compare across machines.
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "common/error.h"
+#include "common/rng.h"
+#include "sim/pipeline/render_dataset.h"
+#include "sim/scenario/scenario_loader.h"
+#include "sim/sensor/kinect_model.h"
+#include "sim/world/simulated_sequence.h"
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double ms(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+void row(const char* stage, double ms_per_frame, double baseline_ms) {
+  std::printf("  %-34s %8.2f ms/frame %8.1f fps %8.2fx\n", stage, ms_per_frame,
+              1000.0 / ms_per_frame, baseline_ms / ms_per_frame);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Simulator benchmark: per-stage and end-to-end frames per second"};
+  std::string scenario_path = std::string(DEPOT_SOURCE_DIR) + "/scenarios/depot_walking_xyz.yaml";
+  int frames = 150;
+  int writers = 2;
+  app.add_option("--scenario", scenario_path, "Scenario YAML");
+  app.add_option("--frames", frames, "Frames per measurement")->check(CLI::Range(10, 100000));
+  app.add_option("--writers", writers, "Writer threads for the end-to-end run")
+      ->check(CLI::Range(1, 32));
+  CLI11_PARSE(app, argc, argv);
+  try {
+    depot::sim::Scenario scenario = depot::sim::load_scenario(scenario_path);
+    scenario.frames = frames;
+
+    // Stages, single-threaded, on the same frames.
+    double physics = 0, render = 0, labels = 0, convert = 0, sensor = 0, png_rgb = 0, png_depth = 0,
+           png_labels = 0;
+    {
+      depot::sim::SimulatedSequence sequence(scenario, depot::sim::GlBackend::kOsMesa);
+      depot::sim::RenderedFrame frame;
+      depot::sim::FrameTruth truth;
+      depot::sim::SequenceTimings t;
+      std::vector<uchar> buf;
+      const std::vector<int> params{cv::IMWRITE_PNG_COMPRESSION, 1};
+      while (sequence.next(frame, truth, &t)) {
+        physics += t.physics_ms;
+        render += t.render.color_depth_ms;
+        labels += t.render.segmentation_ms;
+        convert += t.render.convert_ms;
+        auto t0 = Clock::now();
+        cv::Mat depth = depot::sim::apply_depth_model(frame.depth, scenario.sensor,
+                                                      scenario.camera.f, truth.index);
+        depot::sim::apply_rgb_noise(frame.bgr, scenario.sensor.rgb_noise, truth.index);
+        cv::Mat depth16 = depot::sim::depth_to_u16(depth, scenario.camera.depth_factor);
+        auto t1 = Clock::now();
+        cv::imencode(".png", frame.bgr, buf,
+                     {cv::IMWRITE_PNG_COMPRESSION, 1, cv::IMWRITE_PNG_STRATEGY,
+                      cv::IMWRITE_PNG_STRATEGY_HUFFMAN_ONLY});
+        auto t2 = Clock::now();
+        cv::imencode(".png", depth16, buf, params);
+        auto t3 = Clock::now();
+        cv::imencode(".png", frame.instance, buf, params);
+        auto t4 = Clock::now();
+        sensor += ms(t0, t1), png_rgb += ms(t1, t2), png_depth += ms(t2, t3),
+            png_labels += ms(t3, t4);
+      }
+    }
+    const double n = frames;
+    const double base = render / n;
+
+    // End to end, as `depot sim render` runs it.
+    const std::string out =
+        (fs::temp_directory_path() / ("depot_sim_bench_" + std::to_string(getpid()))).string();
+    depot::sim::RenderRequest request;
+    request.dataset.output = out;
+    request.dataset.writer_threads = writers;
+    request.progress = false;
+    depot::sim::RenderSummary s = depot::sim::render_dataset(scenario, request);
+    fs::remove_all(out);
+
+    std::printf("depot_sim_bench: %s, %d frames at %dx%d, Kinect sensor model, %d writer threads\n",
+                scenario.name.c_str(), frames, scenario.camera.width, scenario.camera.height,
+                writers);
+    std::printf("  %-34s %17s %12s %9s\n", "stage (single-threaded)", "", "", "vs render");
+    row("physics + actor posing", physics / n, base);
+    row("render RGB + depth (baseline)", base, base);
+    row("render instance labels", labels / n, base);
+    row("convert (flip, depth, ids)", convert / n, base);
+    row("sensor model", sensor / n, base);
+    row("PNG encode RGB (Huffman only)", png_rgb / n, base);
+    row("PNG encode depth", png_depth / n, base);
+    row("PNG encode labels", png_labels / n, base);
+    const double serial =
+        (physics + render + labels + convert + sensor + png_rgb + png_depth + png_labels) / n;
+    row("sum of stages (one core)", serial, base);
+    row("end to end (render + labels + write)", 1000.0 * s.seconds / s.frames, base);
+    std::printf("  end to end: %.1f fps (target >= 25 fps at 640x480), %.1f MB written\n",
+                s.frames / s.seconds, s.bytes / 1e6);
+  } catch (const depot::Error& e) {
+    std::fprintf(stderr, "depot_sim_bench: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
