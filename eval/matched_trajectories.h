@@ -7,7 +7,7 @@
 
 #include "common/pose.h"
 #include "common/tum_io.h"
-#include "eval/association.h"
+#include "common/tum_association.h"
 
 namespace depot::eval {
 

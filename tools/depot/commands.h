@@ -5,6 +5,7 @@
 namespace depot::cli {
 
 void register_sim_commands(CLI::App& app);
+void register_slam_commands(CLI::App& app);
 void register_eval_commands(CLI::App& app);
 
 }  // namespace depot::cli

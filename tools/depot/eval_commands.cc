@@ -23,7 +23,7 @@ namespace {
 struct CommonArgs {
   std::string reference_path;
   std::string estimate_path;
-  eval::AssociationOptions association;
+  AssociationOptions association;
   std::string json_path;
   std::string plot_path;
 };

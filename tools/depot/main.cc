@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Show help for all commands");
   depot::cli::register_sim_commands(app);
+  depot::cli::register_slam_commands(app);
   depot::cli::register_eval_commands(app);
   depot::install_interrupt_handler();
 

@@ -1,4 +1,4 @@
-#include "eval/association.h"
+#include "common/tum_association.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "common/error.h"
 
-namespace depot::eval {
+namespace depot {
 namespace {
 
 struct Candidate {
@@ -78,4 +78,4 @@ std::vector<TimestampMatch> associate(const std::vector<double>& reference_stamp
   return matches;
 }
 
-}  // namespace depot::eval
+}  // namespace depot

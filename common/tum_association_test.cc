@@ -1,4 +1,4 @@
-#include "eval/association.h"
+#include "common/tum_association.h"
 
 #include <cmath>
 #include <fstream>
@@ -9,7 +9,7 @@
 
 #include "common/error.h"
 
-namespace depot::eval {
+namespace depot {
 namespace {
 
 std::vector<std::pair<size_t, size_t>> pairs_of(const std::vector<TimestampMatch>& m) {
@@ -129,4 +129,4 @@ TEST(Association, RealFr1XyzStampsMatchAssociatePy) {
 }
 
 }  // namespace
-}  // namespace depot::eval
+}  // namespace depot

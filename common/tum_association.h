@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace depot::eval {
+namespace depot {
 
 struct AssociationOptions {
   double max_difference = 0.02;  // s, strict upper bound on |dt|
@@ -24,4 +24,4 @@ std::vector<TimestampMatch> associate(const std::vector<double>& reference_stamp
                                       const std::vector<double>& estimate_stamps,
                                       const AssociationOptions& options = {});
 
-}  // namespace depot::eval
+}  // namespace depot

@@ -1,0 +1,52 @@
+#include "slam/data/features.h"
+
+#include <cmath>
+
+namespace depot::slam {
+
+Features::Features(std::vector<cv::KeyPoint> kps, cv::Mat desc, const cv::Mat& depth_image,
+                   const PinholeCamera& cam, const ScaleLevels* lv)
+    : keypoints(std::move(kps)), descriptors(std::move(desc)), levels(lv), camera(cam) {
+  const size_t n = keypoints.size();
+  depth.assign(n, -1.0f);
+  u_right.assign(n, -1.0f);
+  for (size_t i = 0; i < n; ++i) {
+    const int x = static_cast<int>(std::lround(keypoints[i].pt.x));
+    const int y = static_cast<int>(std::lround(keypoints[i].pt.y));
+    if (x < 0 || y < 0 || x >= depth_image.cols || y >= depth_image.rows) continue;
+    const float z = depth_image.at<float>(y, x);
+    if (z > 0 && std::isfinite(z)) {
+      depth[i] = z;
+      u_right[i] = static_cast<float>(camera.right_u(keypoints[i].pt.x, z));
+    }
+  }
+  cell_w_ = static_cast<double>(camera.width) / kGridCols;
+  cell_h_ = static_cast<double>(camera.height) / kGridRows;
+  grid_.assign(kGridCols * kGridRows, {});
+  for (size_t i = 0; i < n; ++i) {
+    int cx = static_cast<int>(keypoints[i].pt.x / cell_w_), cy = static_cast<int>(keypoints[i].pt.y / cell_h_);
+    if (cx < 0 || cy < 0 || cx >= kGridCols || cy >= kGridRows) continue;
+    grid_[cy * kGridCols + cx].push_back(i);
+  }
+}
+
+std::vector<size_t> Features::in_area(double u, double v, double r, int min_level, int max_level) const {
+  std::vector<size_t> out;
+  const int x0 = std::max(0, static_cast<int>(std::floor((u - r) / cell_w_)));
+  const int x1 = std::min(kGridCols - 1, static_cast<int>(std::floor((u + r) / cell_w_)));
+  const int y0 = std::max(0, static_cast<int>(std::floor((v - r) / cell_h_)));
+  const int y1 = std::min(kGridRows - 1, static_cast<int>(std::floor((v + r) / cell_h_)));
+  if (x0 > x1 || y0 > y1) return out;
+  for (int gy = y0; gy <= y1; ++gy)
+    for (int gx = x0; gx <= x1; ++gx)
+      for (size_t i : grid_[gy * kGridCols + gx]) {
+        const cv::KeyPoint& kp = keypoints[i];
+        if (min_level >= 0 && kp.octave < min_level) continue;
+        if (max_level >= 0 && kp.octave > max_level) continue;
+        const double dx = kp.pt.x - u, dy = kp.pt.y - v;
+        if (dx * dx + dy * dy < r * r) out.push_back(i);
+      }
+  return out;
+}
+
+}  // namespace depot::slam

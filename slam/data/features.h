@@ -1,0 +1,41 @@
+#pragma once
+// The keypoints of one image with their descriptors, depths and a grid for
+// fast area queries. Shared by Frame and KeyFrame.
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "slam/camera/pinhole_camera.h"
+#include "slam/data/scale_levels.h"
+
+namespace depot::slam {
+
+class Features {
+ public:
+  static constexpr int kGridCols = 64;
+  static constexpr int kGridRows = 48;
+
+  Features() = default;
+  // Depth (CV_32F metres, 0 = none) is sampled at each keypoint.
+  Features(std::vector<cv::KeyPoint> keypoints, cv::Mat descriptors, const cv::Mat& depth,
+           const PinholeCamera& camera, const ScaleLevels* levels);
+
+  size_t size() const { return keypoints.size(); }
+  // Indices of keypoints within radius r of (u, v) at pyramid levels
+  // [min_level, max_level] (negative = no bound).
+  std::vector<size_t> in_area(double u, double v, double r, int min_level = -1, int max_level = -1) const;
+  bool has_depth(size_t i) const { return depth[i] > 0; }
+
+  std::vector<cv::KeyPoint> keypoints;
+  cv::Mat descriptors;         // N x 32 CV_8U
+  std::vector<float> depth;    // metres, <= 0 when unknown
+  std::vector<float> u_right;  // virtual right coordinate, < 0 when unknown
+  const ScaleLevels* levels = nullptr;
+  PinholeCamera camera;
+
+ private:
+  std::vector<std::vector<size_t>> grid_;  // row-major kGridRows x kGridCols
+  double cell_w_ = 1, cell_h_ = 1;
+};
+
+}  // namespace depot::slam

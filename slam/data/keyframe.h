@@ -1,0 +1,62 @@
+#pragma once
+// A keyframe: a frame kept in the map, with its covisibility connections
+// (keyframes sharing map points, weighted by how many) and spanning tree.
+#include <map>
+#include <set>
+#include <vector>
+
+#include "common/pose.h"
+#include "slam/data/features.h"
+#include "slam/data/frame.h"
+
+namespace depot::slam {
+
+class MapPoint;
+
+class KeyFrame {
+ public:
+  KeyFrame(long id, const Frame& frame);
+
+  long id;
+  long frame_id;
+  double timestamp;
+  Features features;
+  std::vector<MapPoint*> map_points;
+  Pose T_cw;
+  Pose T_cp = Pose::Identity();  // relative to the parent, fixed when set bad
+  bool bad = false;
+  // Markers that avoid sets in hot loops: the id of the keyframe/frame whose
+  // processing last visited this keyframe.
+  long local_ba_for = -1, fixed_ba_for = -1, track_local_for = -1, fuse_target_for = -1;
+
+  Eigen::Vector3d camera_center() const { return T_cw.inverse().translation(); }
+  void add_map_point(MapPoint* mp, size_t index) { map_points[index] = mp; }
+  void erase_map_point(size_t index) { map_points[index] = nullptr; }
+  void erase_map_point(MapPoint* mp);
+  // Map points that are set and not bad; `min_obs` > 0 requires that many observers.
+  int tracked_map_points(int min_obs) const;
+
+  // Covisibility: recomputed from the shared map points (weight >= 15, or the
+  // best one), updating the neighbours' links and the spanning tree.
+  void update_connections();
+  void add_connection(KeyFrame* kf, int weight);
+  void erase_connection(KeyFrame* kf);
+  std::vector<KeyFrame*> covisibles(size_t n = SIZE_MAX) const;
+  std::vector<KeyFrame*> covisibles_with_weight(int min_weight) const;
+  int weight(KeyFrame* kf) const;
+  KeyFrame* parent() const { return parent_; }
+  const std::set<KeyFrame*>& children() const { return children_; }
+  // Removes the keyframe from the graph (not the first one).
+  void set_bad();
+
+ private:
+  void sort_connections();
+  std::map<KeyFrame*, int> connections_;
+  std::vector<KeyFrame*> ordered_;
+  std::vector<int> ordered_weights_;
+  KeyFrame* parent_ = nullptr;
+  std::set<KeyFrame*> children_;
+  bool first_connection_ = true;
+};
+
+}  // namespace depot::slam

@@ -1,0 +1,46 @@
+#pragma once
+// The map: owns keyframes and map points (never freed while the map lives;
+// bad ones leave the active sets), with one mutex that tracking and local
+// mapping hold while they read or change it.
+#include <memory>
+#include <mutex>
+#include <set>
+#include <vector>
+
+#include "slam/data/keyframe.h"
+#include "slam/data/map_point.h"
+
+namespace depot::slam {
+
+struct ById {
+  template <typename T>
+  bool operator()(const T* a, const T* b) const { return a->id < b->id; }
+};
+
+class Map {
+ public:
+  KeyFrame* create_keyframe(const Frame& frame);
+  MapPoint* create_map_point(const Eigen::Vector3d& position, KeyFrame* reference);
+  void erase_keyframe(KeyFrame* kf) { keyframes_.erase(kf); }
+  void erase_map_point(MapPoint* mp) { map_points_.erase(mp); }
+
+  const std::set<KeyFrame*, ById>& keyframes() const { return keyframes_; }
+  const std::set<MapPoint*, ById>& map_points() const { return map_points_; }
+  size_t n_keyframes() const { return keyframes_.size(); }
+  size_t n_map_points() const { return map_points_.size(); }
+  KeyFrame* first_keyframe() const { return keyframes_.empty() ? nullptr : *keyframes_.begin(); }
+
+  std::mutex& mutex() { return mutex_; }
+  // All keyframes ever created (for the trajectory, bad ones included).
+  const std::vector<std::unique_ptr<KeyFrame>>& all_keyframes() const { return kf_storage_; }
+  size_t allocated_map_points() const { return mp_storage_.size(); }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<KeyFrame>> kf_storage_;
+  std::vector<std::unique_ptr<MapPoint>> mp_storage_;
+  std::set<KeyFrame*, ById> keyframes_;
+  std::set<MapPoint*, ById> map_points_;
+};
+
+}  // namespace depot::slam

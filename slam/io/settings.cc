@@ -1,0 +1,70 @@
+#include "slam/io/settings.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+
+#include "common/error.h"
+
+namespace depot::slam {
+namespace {
+
+template <typename T>
+T read(const YAML::Node& n, const char* key, T fallback, const std::string& path, double lo, double hi) {
+  if (!n || !n[key]) return fallback;
+  T v;
+  try {
+    v = n[key].as<T>();
+  } catch (const YAML::Exception&) {
+    fail(path + ":" + std::to_string(n[key].Mark().line + 1), std::string("bad value for '") + key + "'");
+  }
+  const double d = static_cast<double>(v);
+  if (!std::isfinite(d) || d < lo || d > hi)
+    fail(path + ":" + std::to_string(n[key].Mark().line + 1),
+         std::string("'") + key + "' out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return v;
+}
+
+}  // namespace
+
+SlamSettings load_settings(const std::string& path, const SlamSettings& defaults) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    fail(path, "cannot open settings file");
+  } catch (const YAML::Exception& e) {
+    fail(path + ":" + std::to_string(e.mark.line + 1), "YAML syntax error: " + e.msg);
+  }
+  if (!root.IsMap()) fail(path, "settings must be a YAML map");
+  SlamSettings s = defaults;
+  const YAML::Node cam = root["camera"];
+  s.camera.width = read<int>(cam, "width", s.camera.width, path, 16, 8192);
+  s.camera.height = read<int>(cam, "height", s.camera.height, path, 16, 8192);
+  s.camera.fx = read<double>(cam, "fx", s.camera.fx, path, 1, 1e5);
+  s.camera.fy = read<double>(cam, "fy", s.camera.fy, path, 1, 1e5);
+  s.camera.cx = read<double>(cam, "cx", s.camera.cx, path, 0, 8192);
+  s.camera.cy = read<double>(cam, "cy", s.camera.cy, path, 0, 8192);
+  // Virtual stereo baseline (ORB-SLAM2's Camera.bf); default 0.08 m x fx.
+  const double baseline = read<double>(cam, "baseline", s.camera.bf / s.camera.fx, path, 0.001, 1.0);
+  s.camera.bf = baseline * s.camera.fx;
+  const YAML::Node depth = root["depth"];
+  s.camera.depth_factor = read<double>(depth, "factor", s.camera.depth_factor, path, 1e-3, 1e6);
+  // Close/far threshold in baselines (ORB-SLAM2's ThDepth, default 40).
+  const double th_depth = read<double>(depth, "close_baselines", 40.0, path, 1, 1000);
+  s.camera.close_depth = th_depth * baseline;
+  const YAML::Node orb = root["orb"];
+  s.orb.n_features = read<int>(orb, "features", s.orb.n_features, path, 50, 20000);
+  s.orb.scale_factor = read<float>(orb, "scale_factor", s.orb.scale_factor, path, 1.01, 2.0);
+  s.orb.n_levels = read<int>(orb, "levels", s.orb.n_levels, path, 1, 16);
+  s.orb.ini_fast = read<int>(orb, "ini_fast", s.orb.ini_fast, path, 1, 255);
+  s.orb.min_fast = read<int>(orb, "min_fast", s.orb.min_fast, path, 1, 255);
+  const YAML::Node tr = root["tracking"];
+  s.tracker.max_frames_between_kf = read<int>(tr, "max_frames_between_keyframes", s.tracker.max_frames_between_kf, path, 1, 1000);
+  s.tracker.min_init_points = read<int>(tr, "min_init_points", s.tracker.min_init_points, path, 10, 10000);
+  const YAML::Node mapping = root["mapping"];
+  if (mapping && mapping["threaded"]) s.threaded_mapping = mapping["threaded"].as<bool>();
+  return s;
+}
+
+}  // namespace depot::slam

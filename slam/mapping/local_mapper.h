@@ -1,0 +1,65 @@
+#pragma once
+// Local mapping (ORB-SLAM2's LocalMapping): takes keyframes from tracking,
+// links their map points, culls weak new points, triangulates new points
+// with neighbour keyframes, fuses duplicates, runs local bundle adjustment
+// and removes redundant keyframes. Runs in its own thread, or synchronously
+// (run_pending) for reproducible runs.
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <list>
+#include <mutex>
+#include <thread>
+
+#include "slam/data/map.h"
+#include "slam/mapping/keyframe_sink.h"
+
+namespace depot::slam {
+
+struct LocalMapperStats {
+  long keyframes = 0;
+  long points_created = 0;
+  long points_culled = 0;
+  long keyframes_culled = 0;
+  double ba_ms = 0;
+};
+
+class LocalMapper : public KeyFrameSink {
+ public:
+  LocalMapper(Map& map, bool threaded);
+  ~LocalMapper() override;
+
+  void insert_keyframe(KeyFrame* kf) override;
+  bool idle() const override;
+  size_t queued() const override;
+  void interrupt_ba() override { abort_ba_ = true; }
+
+  // Synchronous mode: processes every queued keyframe now.
+  void run_pending();
+  // Threaded mode: finishes the queue and stops the thread.
+  void stop();
+  LocalMapperStats stats() const;
+
+ private:
+  void thread_main();
+  void process(KeyFrame* kf);
+  void process_new_keyframe(KeyFrame* kf);
+  void cull_map_points(KeyFrame* kf);
+  void create_new_map_points(KeyFrame* kf);
+  void search_in_neighbors(KeyFrame* kf);
+  void cull_keyframes(KeyFrame* kf);
+
+  Map& map_;
+  bool threaded_;
+  mutable std::mutex queue_mutex_;
+  std::condition_variable cv_;
+  std::deque<KeyFrame*> queue_;
+  std::atomic<bool> busy_{false};
+  std::atomic<bool> stop_{false};
+  std::atomic<bool> abort_ba_{false};
+  std::list<MapPoint*> recent_points_;
+  LocalMapperStats stats_;
+  std::thread thread_;
+};
+
+}  // namespace depot::slam

@@ -1,0 +1,121 @@
+#include "slam/system/system.h"
+
+#include <chrono>
+
+#include <opencv2/imgproc.hpp>
+
+#include "common/error.h"
+
+namespace depot::slam {
+namespace {
+
+double ms_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+// Camera pose of a trajectory entry, following culled references up the
+// spanning tree (ORB-SLAM2's way of letting corrections reach every frame).
+bool resolve(const TrajectoryEntry& e, Pose& T_wc) {
+  KeyFrame* ref = e.reference;
+  if (!ref) return false;
+  Pose T_cr = e.T_cr;
+  while (ref->bad && ref->parent()) {
+    T_cr = T_cr * ref->T_cp;
+    ref = ref->parent();
+  }
+  T_wc = (T_cr * ref->T_cw).inverse();
+  return true;
+}
+
+}  // namespace
+
+System::System(const SlamSettings& settings, KeypointFilter* filter)
+    : settings_(settings),
+      filter_(filter),
+      levels_(ScaleLevels::make(settings.orb.n_levels, settings.orb.scale_factor)),
+      extractor_(settings.orb),
+      mapper_(map_, settings.threaded_mapping),
+      tracker_(map_, mapper_, settings.tracker) {}
+
+System::~System() { mapper_.stop(); }
+
+TrackResult System::track(const cv::Mat& bgr, const cv::Mat& depth, double timestamp) {
+  const PinholeCamera& cam = settings_.camera;
+  if (bgr.type() != CV_8UC3 || bgr.cols != cam.width || bgr.rows != cam.height)
+    fail("frame " + std::to_string(next_frame_id_), "colour image must be CV_8UC3 of the camera's size");
+  if (depth.type() != CV_32F || depth.size() != bgr.size())
+    fail("frame " + std::to_string(next_frame_id_), "depth must be CV_32F metres of the colour image's size");
+  TrackResult result;
+  auto t0 = std::chrono::steady_clock::now();
+  cv::Mat gray;
+  cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
+  std::vector<cv::KeyPoint> keypoints;
+  cv::Mat descriptors;
+  extractor_.extract(gray, cv::Mat(), keypoints, descriptors);
+  auto t1 = std::chrono::steady_clock::now();
+  result.keypoints = static_cast<int>(keypoints.size());
+  if (filter_) {
+    std::vector<uint8_t> keep(keypoints.size(), 1);
+    filter_->filter(FrameImages{bgr, gray, depth, timestamp, next_frame_id_}, keypoints, keep);
+    std::vector<cv::KeyPoint> kept;
+    cv::Mat kept_desc;
+    for (size_t i = 0; i < keypoints.size(); ++i) {
+      if (!keep[i]) continue;
+      kept.push_back(keypoints[i]);
+      kept_desc.push_back(descriptors.row(static_cast<int>(i)));
+    }
+    keypoints.swap(kept);
+    descriptors = kept_desc;
+  }
+  auto t2 = std::chrono::steady_clock::now();
+  result.kept = static_cast<int>(keypoints.size());
+  Frame frame(next_frame_id_++, timestamp, Features(std::move(keypoints), descriptors, depth, cam, &levels_));
+  result.state = tracker_.track(std::move(frame), &result.stats);
+  if (!settings_.threaded_mapping) mapper_.run_pending();
+  auto t3 = std::chrono::steady_clock::now();
+  if (result.state == TrackingState::kOk || result.state == TrackingState::kRelocalized) {
+    std::lock_guard<std::mutex> lock(map_.mutex());
+    result.T_wc = tracker_.last_frame().T_cw.inverse();
+  }
+  result.timing = {ms_between(t0, t1), ms_between(t1, t2), ms_between(t2, t3), ms_between(t0, t3)};
+  return result;
+}
+
+void System::finish() {
+  if (settings_.threaded_mapping) {
+    // Wait until the queue is empty and the mapper idle.
+    while (!mapper_.idle()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  } else {
+    mapper_.run_pending();
+  }
+}
+
+std::vector<StampedPose> System::trajectory() const {
+  std::lock_guard<std::mutex> lock(map_.mutex());
+  std::vector<StampedPose> out;
+  for (const TrajectoryEntry& e : tracker_.trajectory()) {
+    Pose T_wc;
+    if (resolve(e, T_wc)) out.push_back({e.timestamp, T_wc});
+  }
+  return out;
+}
+
+std::vector<StampedPose> System::keyframe_trajectory() const {
+  std::lock_guard<std::mutex> lock(map_.mutex());
+  std::vector<StampedPose> out;
+  for (KeyFrame* kf : map_.keyframes())
+    if (!kf->bad) out.push_back({kf->timestamp, kf->T_cw.inverse()});
+  return out;
+}
+
+size_t System::n_keyframes() const {
+  std::lock_guard<std::mutex> lock(map_.mutex());
+  return map_.n_keyframes();
+}
+
+size_t System::n_map_points() const {
+  std::lock_guard<std::mutex> lock(map_.mutex());
+  return map_.n_map_points();
+}
+
+}  // namespace depot::slam

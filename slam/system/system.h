@@ -1,0 +1,67 @@
+#pragma once
+// The SLAM system: feed (rgb, depth, timestamp), get the camera pose and
+// tracking state. Owns the ORB extractor, the optional keypoint filter (the
+// dynamic-rejection seam), the tracker, the map and local mapping.
+#include <memory>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "common/tum_io.h"
+#include "slam/data/map.h"
+#include "slam/feature/orb_extractor.h"
+#include "slam/io/settings.h"
+#include "slam/mapping/local_mapper.h"
+#include "slam/track/keypoint_filter.h"
+#include "slam/track/tracker.h"
+
+namespace depot::slam {
+
+struct FrameTiming {
+  double extract_ms = 0;
+  double filter_ms = 0;
+  double track_ms = 0;  // matching + pose optimisation + keyframe decision
+  double total_ms = 0;
+};
+
+struct TrackResult {
+  TrackingState state = TrackingState::kNotInitialized;
+  Pose T_wc = Pose::Identity();  // valid when state is OK or RELOCALIZED
+  int keypoints = 0;             // extracted
+  int kept = 0;                  // after the keypoint filter
+  TrackingStats stats;
+  FrameTiming timing;
+};
+
+class System {
+ public:
+  // `filter` may be null (plain ORB-SLAM2); it is not owned.
+  explicit System(const SlamSettings& settings, KeypointFilter* filter = nullptr);
+  ~System();
+
+  // bgr: CV_8UC3; depth: CV_32F metres (0 = none), same size as the camera.
+  TrackResult track(const cv::Mat& bgr, const cv::Mat& depth, double timestamp);
+  // Lets local mapping finish its queue (call before reading trajectories).
+  void finish();
+
+  // Camera-to-world pose of every frame given so far (lost frames keep the
+  // last known pose; frames before initialisation are left out).
+  std::vector<StampedPose> trajectory() const;
+  std::vector<StampedPose> keyframe_trajectory() const;
+  size_t n_keyframes() const;
+  size_t n_map_points() const;
+  LocalMapperStats mapping_stats() const { return mapper_.stats(); }
+  const SlamSettings& settings() const { return settings_; }
+
+ private:
+  SlamSettings settings_;
+  KeypointFilter* filter_;
+  ScaleLevels levels_;
+  OrbExtractor extractor_;
+  mutable Map map_;
+  LocalMapper mapper_;
+  Tracker tracker_;
+  long next_frame_id_ = 0;
+};
+
+}  // namespace depot::slam

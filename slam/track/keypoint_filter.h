@@ -1,0 +1,30 @@
+#pragma once
+// The seam between feature extraction and matching: a filter that decides
+// which keypoints may be used for matching, pose estimation and new map
+// points (the dynamic-feature rejection plugs in here). Rejected keypoints
+// never reach the tracker.
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace depot::slam {
+
+struct FrameImages {
+  const cv::Mat& bgr;    // CV_8UC3
+  const cv::Mat& gray;   // CV_8UC1
+  const cv::Mat& depth;  // CV_32F metres, 0 = none
+  double timestamp;
+  long frame_id;
+};
+
+class KeypointFilter {
+ public:
+  virtual ~KeypointFilter() = default;
+  // Sets keep[i] = 1 for keypoints to use, 0 for rejected ones (keep has
+  // keypoints.size() entries, all 1 on entry).
+  virtual void filter(const FrameImages& images, const std::vector<cv::KeyPoint>& keypoints,
+                      std::vector<uint8_t>& keep) = 0;
+};
+
+}  // namespace depot::slam

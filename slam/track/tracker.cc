@@ -1,0 +1,335 @@
+#include "slam/track/tracker.h"
+
+#include <algorithm>
+#include <map>
+
+#include "slam/optimize/optimizer.h"
+#include "slam/solve/pnp_ransac.h"
+
+namespace depot::slam {
+
+Tracker::Tracker(Map& map, KeyFrameSink& mapper, const TrackerParams& params)
+    : map_(map), mapper_(mapper), params_(params) {}
+
+TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
+  std::lock_guard<std::mutex> lock(map_.mutex());
+  TrackingStats local;
+  bool ok = false;
+  bool relocalized = false;
+  if (state_ == TrackingState::kNotInitialized) {
+    ok = initialize(frame);
+    if (!ok) {
+      trajectory_.push_back({frame.timestamp, nullptr, Pose::Identity(), state_});
+      if (stats) *stats = local;
+      return state_;
+    }
+    local.new_keyframe = true;
+    local.inliers = static_cast<int>(std::count_if(frame.map_points.begin(), frame.map_points.end(),
+                                                   [](MapPoint* p) { return p != nullptr; }));
+  } else {
+    if (state_ == TrackingState::kOk || state_ == TrackingState::kRelocalized) {
+      if (has_velocity_ && frame.id > last_reloc_frame_ + 1) ok = track_motion_model(frame, local.matches);
+      if (!ok) ok = track_reference_keyframe(frame, local.matches);
+    } else {
+      ok = relocalize(frame, local.matches);
+      relocalized = ok;
+    }
+    frame.reference = reference_;
+    if (ok) ok = track_local_map(frame, local.inliers, local.local_points);
+    state_ = ok ? (relocalized ? TrackingState::kRelocalized : TrackingState::kOk) : TrackingState::kLost;
+    if (ok) {
+      velocity_ = frame.T_cw * last_.T_cw.inverse();
+      has_velocity_ = last_.has_pose;
+      if (need_keyframe(frame, local.inliers)) {
+        create_keyframe(frame);
+        local.new_keyframe = true;
+      }
+      // Outliers must not be carried into the next frame's motion model.
+      for (size_t i = 0; i < frame.size(); ++i)
+        if (frame.map_points[i] && frame.outlier[i]) frame.map_points[i] = nullptr;
+    } else {
+      has_velocity_ = false;
+      frame.has_pose = false;
+    }
+  }
+  if (ok && frame.reference) {
+    trajectory_.push_back({frame.timestamp, frame.reference, frame.T_cw * frame.reference->T_cw.inverse(), state_});
+  } else if (!trajectory_.empty() && trajectory_.back().reference) {
+    // Lost: keep the last known pose (flagged), as ORB-SLAM2 does.
+    TrajectoryEntry e = trajectory_.back();
+    e.timestamp = frame.timestamp;
+    e.state = state_;
+    trajectory_.push_back(e);
+  } else {
+    trajectory_.push_back({frame.timestamp, nullptr, Pose::Identity(), state_});
+  }
+  if (ok) last_ = std::move(frame);
+  else last_.timestamp = frame.timestamp;
+  if (stats) *stats = local;
+  return state_;
+}
+
+bool Tracker::initialize(Frame& frame) {
+  // As ORB-SLAM2: enough keypoints overall, and points only where depth is known.
+  int with_depth = 0;
+  for (size_t i = 0; i < frame.size(); ++i) with_depth += frame.features.has_depth(i);
+  if (static_cast<int>(frame.size()) < params_.min_init_points || with_depth < 100) return false;
+  frame.T_cw = Pose::Identity();
+  frame.has_pose = true;
+  KeyFrame* kf = map_.create_keyframe(frame);
+  const Pose T_wc = frame.T_cw.inverse();
+  for (size_t i = 0; i < frame.size(); ++i) {
+    if (!frame.features.has_depth(i)) continue;
+    const cv::KeyPoint& kp = frame.features.keypoints[i];
+    MapPoint* mp = map_.create_map_point(T_wc * frame.features.camera.unproject(kp.pt.x, kp.pt.y, frame.features.depth[i]), kf);
+    mp->add_observation(kf, i);
+    kf->add_map_point(mp, i);
+    mp->update_descriptor();
+    mp->update_normal_and_depth();
+    frame.map_points[i] = mp;
+  }
+  mapper_.insert_keyframe(kf);
+  reference_ = kf;
+  frame.reference = kf;
+  last_keyframe_frame_ = frame.id;
+  local_keyframes_ = {kf};
+  local_points_.clear();
+  for (MapPoint* mp : kf->map_points)
+    if (mp) local_points_.push_back(mp);
+  state_ = TrackingState::kOk;
+  last_ = frame;
+  return true;
+}
+
+int Tracker::discard_outliers(Frame& frame) {
+  int kept = 0;
+  for (size_t i = 0; i < frame.size(); ++i) {
+    MapPoint* mp = frame.map_points[i];
+    if (!mp) continue;
+    if (frame.outlier[i]) {
+      frame.map_points[i] = nullptr;
+      frame.outlier[i] = false;
+      mp->last_seen_frame = frame.id;
+    } else if (mp->n_observations() > 0) {
+      ++kept;
+    }
+  }
+  return kept;
+}
+
+bool Tracker::track_motion_model(Frame& frame, int& matches) {
+  frame.T_cw = velocity_ * last_.T_cw;
+  std::fill(frame.map_points.begin(), frame.map_points.end(), nullptr);
+  matches = match_by_projection(frame, last_, 15.0f);
+  if (matches < 20) {
+    std::fill(frame.map_points.begin(), frame.map_points.end(), nullptr);
+    matches = match_by_projection(frame, last_, 30.0f);
+  }
+  if (matches < 20) return false;
+  optimize_pose(frame);
+  frame.has_pose = true;
+  return discard_outliers(frame) >= 10;
+}
+
+bool Tracker::track_reference_keyframe(Frame& frame, int& matches) {
+  if (!reference_ || reference_->bad) return false;
+  std::vector<MapPoint*> found;
+  matches = match_by_descriptor(*reference_, frame, found, 0.7f);
+  if (matches < 15) return false;
+  frame.map_points = found;
+  frame.T_cw = last_.T_cw;
+  optimize_pose(frame);
+  frame.has_pose = true;
+  return discard_outliers(frame) >= 10;
+}
+
+bool Tracker::relocalize(Frame& frame, int& matches) {
+  // Without a bag-of-words database, try the most recent keyframes.
+  std::vector<KeyFrame*> candidates(map_.keyframes().rbegin(), map_.keyframes().rend());
+  if (static_cast<int>(candidates.size()) > params_.relocalisation_candidates)
+    candidates.resize(params_.relocalisation_candidates);
+  for (KeyFrame* kf : candidates) {
+    if (kf->bad) continue;
+    std::vector<MapPoint*> found;
+    matches = match_by_descriptor(*kf, frame, found, 0.75f);
+    if (matches < 15) continue;
+    std::vector<Eigen::Vector3d> world;
+    std::vector<Eigen::Vector2d> pixels;
+    std::vector<size_t> index;
+    for (size_t i = 0; i < found.size(); ++i) {
+      if (!found[i]) continue;
+      world.push_back(found[i]->position);
+      pixels.emplace_back(frame.features.keypoints[i].pt.x, frame.features.keypoints[i].pt.y);
+      index.push_back(i);
+    }
+    PnpResult pnp = solve_pnp_ransac(world, pixels, frame.features.camera);
+    if (!pnp.ok) continue;
+    std::fill(frame.map_points.begin(), frame.map_points.end(), nullptr);
+    for (int k : pnp.inliers) frame.map_points[index[k]] = found[index[k]];
+    frame.T_cw = pnp.T_cw;
+    frame.has_pose = true;
+    int good = optimize_pose(frame);
+    if (good < 10) continue;
+    discard_outliers(frame);
+    if (good < params_.relocalisation_min_inliers) {
+      // More matches from the candidate's neighbourhood by projection.
+      std::vector<ProjectedPoint> projected;
+      for (KeyFrame* n : kf->covisibles(10))
+        for (MapPoint* mp : n->map_points) {
+          ProjectedPoint p;
+          if (mp && !mp->bad && project_into(*mp, frame.T_cw, frame.features, p)) projected.push_back(p);
+        }
+      match_local_points(frame, projected, 5.0f);
+      good = optimize_pose(frame);
+      discard_outliers(frame);
+    }
+    if (good >= params_.relocalisation_min_inliers) {
+      reference_ = kf;
+      last_reloc_frame_ = frame.id;
+      return true;
+    }
+  }
+  return false;
+}
+
+void Tracker::update_local_map(Frame& frame) {
+  // Keyframes that see the frame's points, weighted by how many.
+  std::map<KeyFrame*, int> counter;
+  for (size_t i = 0; i < frame.size(); ++i) {
+    MapPoint* mp = frame.map_points[i];
+    if (!mp) continue;
+    if (mp->bad) {
+      frame.map_points[i] = nullptr;
+      continue;
+    }
+    for (auto& [kf, idx] : mp->observations) counter[kf]++;
+  }
+  local_keyframes_.clear();
+  KeyFrame* best = nullptr;
+  int best_count = 0;
+  for (auto& [kf, n] : counter) {
+    if (kf->bad) continue;
+    if (n > best_count) best = kf, best_count = n;
+    local_keyframes_.push_back(kf);
+    kf->track_local_for = frame.id;
+  }
+  // Their best covisibles, children and parents, up to 80 keyframes.
+  const size_t first_ring = local_keyframes_.size();
+  for (size_t k = 0; k < first_ring && local_keyframes_.size() < 80; ++k) {
+    KeyFrame* kf = local_keyframes_[k];
+    auto add = [&](KeyFrame* n) {
+      if (n && !n->bad && n->track_local_for != frame.id) {
+        n->track_local_for = frame.id;
+        local_keyframes_.push_back(n);
+      }
+    };
+    for (KeyFrame* n : kf->covisibles(10)) add(n);
+    for (KeyFrame* c : kf->children()) add(c);
+    add(kf->parent());
+  }
+  if (best) {
+    reference_ = best;
+    frame.reference = best;
+  }
+  local_points_.clear();
+  for (KeyFrame* kf : local_keyframes_)
+    for (MapPoint* mp : kf->map_points)
+      if (mp && !mp->bad && mp->local_map_for != frame.id) {
+        mp->local_map_for = frame.id;
+        local_points_.push_back(mp);
+      }
+}
+
+bool Tracker::track_local_map(Frame& frame, int& inliers, int& n_local) {
+  update_local_map(frame);
+  for (MapPoint* mp : frame.map_points)
+    if (mp && !mp->bad) {
+      mp->visible++;
+      mp->last_seen_frame = frame.id;
+    }
+  std::vector<ProjectedPoint> projected;
+  for (MapPoint* mp : local_points_) {
+    if (mp->last_seen_frame == frame.id || mp->bad) continue;
+    ProjectedPoint p;
+    if (project_into(*mp, frame.T_cw, frame.features, p)) {
+      mp->visible++;
+      projected.push_back(p);
+    }
+  }
+  n_local = static_cast<int>(local_points_.size());
+  const bool recent_reloc = frame.id < last_reloc_frame_ + 2;
+  if (!projected.empty()) match_local_points(frame, projected, recent_reloc ? 5.0f : 3.0f);
+  optimize_pose(frame);
+  inliers = 0;
+  for (size_t i = 0; i < frame.size(); ++i) {
+    MapPoint* mp = frame.map_points[i];
+    if (!mp) continue;
+    if (!frame.outlier[i]) {
+      mp->found++;
+      if (mp->n_observations() > 0) ++inliers;
+    }
+  }
+  const int needed = frame.id < last_reloc_frame_ + params_.max_frames_between_kf ? params_.relocalisation_min_inliers
+                                                                                  : params_.local_map_min_inliers;
+  return inliers >= needed;
+}
+
+bool Tracker::need_keyframe(const Frame& frame, int inliers) const {
+  const int n_kfs = static_cast<int>(map_.n_keyframes());
+  if (frame.id < last_reloc_frame_ + params_.max_frames_between_kf && n_kfs > params_.max_frames_between_kf)
+    return false;
+  const int min_obs = n_kfs <= 2 ? 2 : 3;
+  const int ref_matches = reference_ ? reference_->tracked_map_points(min_obs) : 0;
+  const bool idle = mapper_.idle();
+  int tracked_close = 0, untracked_close = 0;
+  const double close = frame.features.camera.close_depth;
+  for (size_t i = 0; i < frame.size(); ++i) {
+    const float z = frame.features.depth[i];
+    if (z <= 0 || z >= close) continue;
+    if (frame.map_points[i] && !frame.outlier[i]) ++tracked_close;
+    else ++untracked_close;
+  }
+  const bool need_close = tracked_close < 100 && untracked_close > 70;
+  const double ref_ratio = n_kfs < 2 ? 0.4 : 0.75;
+  const bool c1a = frame.id >= last_keyframe_frame_ + params_.max_frames_between_kf;
+  const bool c1b = frame.id >= last_keyframe_frame_ + params_.min_frames_between_kf && idle;
+  const bool c1c = inliers < ref_matches * 0.25 || need_close;
+  const bool c2 = (inliers < ref_matches * ref_ratio || need_close) && inliers > 15;
+  if (!((c1a || c1b || c1c) && c2)) return false;
+  if (idle) return true;
+  mapper_.interrupt_ba();
+  return mapper_.queued() < 3;
+}
+
+void Tracker::create_keyframe(Frame& frame) {
+  KeyFrame* kf = map_.create_keyframe(frame);
+  reference_ = kf;
+  frame.reference = kf;
+  // New points from depth: all close keypoints without a point, and at least
+  // the 100 nearest ones.
+  std::vector<std::pair<float, size_t>> by_depth;
+  for (size_t i = 0; i < frame.size(); ++i)
+    if (frame.features.depth[i] > 0) by_depth.emplace_back(frame.features.depth[i], i);
+  std::sort(by_depth.begin(), by_depth.end());
+  const Pose T_wc = frame.T_cw.inverse();
+  int created = 0;
+  for (auto& [z, i] : by_depth) {
+    MapPoint* existing = frame.map_points[i];
+    const bool needs_point = !existing || existing->n_observations() < 1;
+    if (needs_point) {
+      const cv::KeyPoint& kp = frame.features.keypoints[i];
+      MapPoint* mp = map_.create_map_point(T_wc * frame.features.camera.unproject(kp.pt.x, kp.pt.y, z), kf);
+      mp->add_observation(kf, i);
+      kf->add_map_point(mp, i);
+      mp->update_descriptor();
+      mp->update_normal_and_depth();
+      frame.map_points[i] = mp;
+    }
+    ++created;
+    if (z > frame.features.camera.close_depth && created > 100) break;
+  }
+  last_keyframe_frame_ = frame.id;
+  mapper_.insert_keyframe(kf);
+}
+
+}  // namespace depot::slam

@@ -1,0 +1,79 @@
+#pragma once
+// The tracking front end (ORB-SLAM2's Tracking for RGB-D): initialisation
+// from depth, constant-velocity motion model with projection matching,
+// fallback to the reference keyframe, local-map tracking, keyframe decision
+// and relocalisation. It locks the map while it works on a frame.
+#include <vector>
+
+#include "common/pose.h"
+#include "slam/data/frame.h"
+#include "slam/data/map.h"
+#include "slam/mapping/keyframe_sink.h"
+#include "slam/match/orb_matcher.h"
+#include "slam/track/tracking_state.h"
+
+namespace depot::slam {
+
+struct TrackerParams {
+  int min_init_points = 500;       // keypoints needed to start (100 of them with depth)
+  int max_frames_between_kf = 30;  // ~1 s at 30 Hz
+  int min_frames_between_kf = 0;
+  int local_map_min_inliers = 30;
+  int relocalisation_min_inliers = 50;
+  int relocalisation_candidates = 40;  // most recent keyframes tried
+};
+
+struct TrackingStats {
+  int matches = 0;        // after the first stage (motion model / reference / reloc)
+  int inliers = 0;        // after local-map tracking
+  int local_points = 0;
+  bool new_keyframe = false;
+};
+
+// One entry per frame for the trajectory: the pose relative to a reference
+// keyframe, so later corrections of that keyframe move the frame with it.
+struct TrajectoryEntry {
+  double timestamp = 0;
+  KeyFrame* reference = nullptr;
+  Pose T_cr = Pose::Identity();
+  TrackingState state = TrackingState::kNotInitialized;
+};
+
+class Tracker {
+ public:
+  Tracker(Map& map, KeyFrameSink& mapper, const TrackerParams& params = {});
+
+  // Tracks a frame whose features are extracted (and filtered).
+  TrackingState track(Frame frame, TrackingStats* stats = nullptr);
+
+  TrackingState state() const { return state_; }
+  const Frame& last_frame() const { return last_; }
+  const std::vector<TrajectoryEntry>& trajectory() const { return trajectory_; }
+
+ private:
+  bool initialize(Frame& frame);
+  bool track_motion_model(Frame& frame, int& matches);
+  bool track_reference_keyframe(Frame& frame, int& matches);
+  bool relocalize(Frame& frame, int& matches);
+  bool track_local_map(Frame& frame, int& inliers, int& n_local);
+  void update_local_map(Frame& frame);
+  bool need_keyframe(const Frame& frame, int inliers) const;
+  void create_keyframe(Frame& frame);
+  int discard_outliers(Frame& frame);
+
+  Map& map_;
+  KeyFrameSink& mapper_;
+  TrackerParams params_;
+  TrackingState state_ = TrackingState::kNotInitialized;
+  Frame last_;
+  Pose velocity_ = Pose::Identity();
+  bool has_velocity_ = false;
+  KeyFrame* reference_ = nullptr;
+  long last_keyframe_frame_ = 0;
+  long last_reloc_frame_ = -1000;
+  std::vector<KeyFrame*> local_keyframes_;
+  std::vector<MapPoint*> local_points_;
+  std::vector<TrajectoryEntry> trajectory_;
+};
+
+}  // namespace depot::slam
