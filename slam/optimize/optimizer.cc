@@ -414,7 +414,7 @@ void local_bundle_adjustment(KeyFrame* kf, Map& map, const std::atomic<bool>* ab
 
     // Local keyframes: kf and its covisibles.
     add_kf(kf, false);
-    for (KeyFrame* k : kf->covisibles())
+    for (KeyFrame* k : kf->covisibles(options.max_local_keyframes))
       if (!k->bad) add_kf(k, false);
     const size_t n_local = ba.kfs.size();
 

@@ -34,6 +34,10 @@ int optimize_pose(Frame& frame);
 struct LocalBaOptions {
   int iterations_first = 5;    // with Huber loss, all observations
   int iterations_second = 10;  // with Huber loss, outliers of the first pass dropped
+  // The most covisible neighbours optimised with kf. ORB-SLAM2 takes all of
+  // them; in dynamic scenes RGB-D tracking spawns many mutually covisible
+  // keyframes and the full window makes BA slower than the frame rate.
+  size_t max_local_keyframes = 20;
 };
 
 // Local bundle adjustment around `kf`: optimises the poses of kf and its

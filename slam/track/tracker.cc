@@ -1,12 +1,29 @@
 #include "slam/track/tracker.h"
 
 #include <algorithm>
+#include <chrono>
 #include <map>
 
 #include "slam/optimize/optimizer.h"
 #include "slam/solve/pnp_ransac.h"
 
 namespace depot::slam {
+namespace {
+
+// Adds the lifetime of the timer to a millisecond counter.
+class ScopedTimer {
+ public:
+  explicit ScopedTimer(double* total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~ScopedTimer() {
+    if (total_) *total_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  double* total_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
 
 Tracker::Tracker(Map& map, KeyFrameSink& mapper, const TrackerParams& params)
     : map_(map), mapper_(mapper), params_(params) {}
@@ -14,12 +31,14 @@ Tracker::Tracker(Map& map, KeyFrameSink& mapper, const TrackerParams& params)
 TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
   std::lock_guard<std::mutex> lock(map_.mutex());
   TrackingStats local;
+  current_stats_ = &local;
   bool ok = false;
   bool relocalized = false;
   if (state_ == TrackingState::kNotInitialized) {
     ok = initialize(frame);
     if (!ok) {
       trajectory_.push_back({frame.timestamp, nullptr, Pose::Identity(), state_});
+      current_stats_ = nullptr;
       if (stats) *stats = local;
       return state_;
     }
@@ -65,6 +84,7 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
   }
   if (ok) last_ = std::move(frame);
   else last_.timestamp = frame.timestamp;
+  current_stats_ = nullptr;
   if (stats) *stats = local;
   return state_;
 }
@@ -101,6 +121,11 @@ bool Tracker::initialize(Frame& frame) {
   return true;
 }
 
+int Tracker::timed_optimize(Frame& frame) {
+  ScopedTimer timer(current_stats_ ? &current_stats_->optimize_ms : nullptr);
+  return optimize_pose(frame);
+}
+
 int Tracker::discard_outliers(Frame& frame) {
   int kept = 0;
   for (size_t i = 0; i < frame.size(); ++i) {
@@ -120,13 +145,16 @@ int Tracker::discard_outliers(Frame& frame) {
 bool Tracker::track_motion_model(Frame& frame, int& matches) {
   frame.T_cw = velocity_ * last_.T_cw;
   std::fill(frame.map_points.begin(), frame.map_points.end(), nullptr);
-  matches = match_by_projection(frame, last_, 15.0f);
-  if (matches < 20) {
-    std::fill(frame.map_points.begin(), frame.map_points.end(), nullptr);
-    matches = match_by_projection(frame, last_, 30.0f);
+  {
+    ScopedTimer timer(&current_stats_->match_ms);
+    matches = match_by_projection(frame, last_, 15.0f);
+    if (matches < 20) {
+      std::fill(frame.map_points.begin(), frame.map_points.end(), nullptr);
+      matches = match_by_projection(frame, last_, 30.0f);
+    }
   }
   if (matches < 20) return false;
-  optimize_pose(frame);
+  timed_optimize(frame);
   frame.has_pose = true;
   return discard_outliers(frame) >= 10;
 }
@@ -134,11 +162,14 @@ bool Tracker::track_motion_model(Frame& frame, int& matches) {
 bool Tracker::track_reference_keyframe(Frame& frame, int& matches) {
   if (!reference_ || reference_->bad) return false;
   std::vector<MapPoint*> found;
-  matches = match_by_descriptor(*reference_, frame, found, 0.7f);
+  {
+    ScopedTimer timer(&current_stats_->match_ms);
+    matches = match_by_descriptor(*reference_, frame, found, 0.7f);
+  }
   if (matches < 15) return false;
   frame.map_points = found;
   frame.T_cw = last_.T_cw;
-  optimize_pose(frame);
+  timed_optimize(frame);
   frame.has_pose = true;
   return discard_outliers(frame) >= 10;
 }
@@ -168,7 +199,7 @@ bool Tracker::relocalize(Frame& frame, int& matches) {
     for (int k : pnp.inliers) frame.map_points[index[k]] = found[index[k]];
     frame.T_cw = pnp.T_cw;
     frame.has_pose = true;
-    int good = optimize_pose(frame);
+    int good = timed_optimize(frame);
     if (good < 10) continue;
     discard_outliers(frame);
     if (good < params_.relocalisation_min_inliers) {
@@ -180,7 +211,7 @@ bool Tracker::relocalize(Frame& frame, int& matches) {
           if (mp && !mp->bad && project_into(*mp, frame.T_cw, frame.features, p)) projected.push_back(p);
         }
       match_local_points(frame, projected, 5.0f);
-      good = optimize_pose(frame);
+      good = timed_optimize(frame);
       discard_outliers(frame);
     }
     if (good >= params_.relocalisation_min_inliers) {
@@ -258,8 +289,11 @@ bool Tracker::track_local_map(Frame& frame, int& inliers, int& n_local) {
   }
   n_local = static_cast<int>(local_points_.size());
   const bool recent_reloc = frame.id < last_reloc_frame_ + 2;
-  if (!projected.empty()) match_local_points(frame, projected, recent_reloc ? 5.0f : 3.0f);
-  optimize_pose(frame);
+  if (!projected.empty()) {
+    ScopedTimer timer(&current_stats_->match_ms);
+    match_local_points(frame, projected, recent_reloc ? 5.0f : 3.0f);
+  }
+  timed_optimize(frame);
   inliers = 0;
   for (size_t i = 0; i < frame.size(); ++i) {
     MapPoint* mp = frame.map_points[i];

@@ -28,6 +28,8 @@ struct TrackingStats {
   int inliers = 0;        // after local-map tracking
   int local_points = 0;
   bool new_keyframe = false;
+  double match_ms = 0;     // all descriptor matching of the frame
+  double optimize_ms = 0;  // all pose optimisation of the frame
 };
 
 // One entry per frame for the trajectory: the pose relative to a reference
@@ -60,7 +62,9 @@ class Tracker {
   bool need_keyframe(const Frame& frame, int inliers) const;
   void create_keyframe(Frame& frame);
   int discard_outliers(Frame& frame);
+  int timed_optimize(Frame& frame);
 
+  TrackingStats* current_stats_ = nullptr;
   Map& map_;
   KeyFrameSink& mapper_;
   TrackerParams params_;

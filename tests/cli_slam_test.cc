@@ -1,0 +1,102 @@
+// `depot slam run` and `depot eval` on bad input: one clear error line, a
+// non-zero exit, and no trajectory written.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "tests/support/dataset_reader.h"
+#include "tests/support/render_helpers.h"
+
+namespace fs = std::filesystem;
+
+namespace depot::test {
+namespace {
+
+struct Result {
+  int code;
+  std::string output;
+};
+
+Result depot(const std::string& args) {
+  Result r;
+  r.code = run_command(depot_binary() + " " + args, &r.output);
+  return r;
+}
+
+// A small valid dataset to break in different ways.
+std::string small_dataset() {
+  std::string src = render_small({"depot_static", 6, 160, false});
+  std::string copy = temp_path("broken");
+  fs::copy(src, copy, fs::copy_options::recursive);
+  return copy;
+}
+
+void expect_error(const std::string& dataset, const std::string& needle) {
+  const std::string out = temp_path("traj") + ".txt";
+  Result r = depot("slam run " + dataset + " -o " + out + " -q");
+  EXPECT_NE(r.code, 0) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_EQ(r.output.rfind("depot: error: ", 0), 0u) << r.output;
+  EXPECT_NE(r.output.find(needle), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out)) << "no trajectory on failure";
+}
+
+std::string first_image(const std::string& dataset, const char* list) {
+  std::ifstream in(dataset + "/" + list);
+  std::string line;
+  while (std::getline(in, line))
+    if (!line.empty() && line[0] != '#') return line.substr(line.find(' ') + 1);
+  return "";
+}
+
+TEST(CliSlam, MissingImage) {
+  std::string d = small_dataset();
+  std::string rgb = first_image(d, "rgb.txt");
+  fs::remove(d + "/" + rgb);
+  expect_error(d, rgb);
+}
+
+TEST(CliSlam, UnreadablePng) {
+  std::string d = small_dataset();
+  std::string rgb = first_image(d, "rgb.txt");
+  std::ofstream(d + "/" + rgb) << "not a png";
+  expect_error(d, "unreadable image");
+}
+
+TEST(CliSlam, DepthOfTheWrongType) {
+  std::string d = small_dataset();
+  std::string depth = first_image(d, "depth.txt");
+  cv::imwrite(d + "/" + depth, cv::Mat(120, 160, CV_8UC3, cv::Scalar(1, 2, 3)));
+  expect_error(d, "16-bit");
+}
+
+TEST(CliSlam, MismatchedTimestampLists) {
+  std::string d = small_dataset();
+  fs::remove(d + "/associations.txt");
+  std::ofstream(d + "/depth.txt") << "# shifted\n1.0 depth/a.png\n2.0 depth/b.png\n";
+  expect_error(d, "no rgb timestamp has a depth timestamp");
+}
+
+TEST(CliSlam, EmptyFolder) {
+  std::string d = temp_path("empty");
+  fs::create_directories(d);
+  expect_error(d, "not a TUM RGB-D folder");
+}
+
+TEST(CliSlam, MissingFolder) { expect_error("/nonexistent/dataset", "not found"); }
+
+TEST(CliSlam, RunsAndWritesATumTrajectory) {
+  std::string d = render_small({"depot_static", 30, 320, false});
+  const std::string out = temp_path("traj") + ".txt";
+  Result r = depot("slam run " + d + " -o " + out + " --sync -q");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("tracked 30 frames (0 lost"), std::string::npos) << r.output;
+  Result ate = depot("eval ate " + d + "/groundtruth.txt " + out);
+  EXPECT_EQ(ate.code, 0) << ate.output;
+  EXPECT_NE(ate.output.find("rmse"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace depot::test
