@@ -49,6 +49,7 @@ TrackResult System::track(const cv::Mat& bgr, const cv::Mat& depth, double times
   auto t0 = std::chrono::steady_clock::now();
   cv::Mat gray;
   cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
+  if (filter_) filter_->begin_frame(FrameImages{bgr, gray, depth, timestamp, next_frame_id_});
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
   extractor_.extract(gray, cv::Mat(), keypoints, descriptors);

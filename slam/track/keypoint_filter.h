@@ -21,6 +21,9 @@ struct FrameImages {
 class KeypointFilter {
  public:
   virtual ~KeypointFilter() = default;
+  // Called when a frame arrives, before ORB extraction: lets a filter start
+  // work that runs in parallel with extraction (e.g. object detection).
+  virtual void begin_frame(const FrameImages& images) { (void)images; }
   // Sets keep[i] = 1 for keypoints to use, 0 for rejected ones (keep has
   // keypoints.size() entries, all 1 on entry).
   virtual void filter(const FrameImages& images, const std::vector<cv::KeyPoint>& keypoints,

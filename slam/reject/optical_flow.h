@@ -1,0 +1,34 @@
+#pragma once
+// Sparse pyramidal Lucas-Kanade flow of keypoints between the previous and
+// the current frame (PAPER.md Eq. 1-5), computed only where asked.
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace depot::slam {
+
+struct FlowParams {
+  int window = 21;  // px
+  int levels = 3;
+  int iterations = 20;
+  float max_error = 30.0f;        // LK residual above which a track fails
+  float max_forward_backward = 1.0f;  // px; consistency check (0 = off)
+};
+
+class SparseFlow {
+ public:
+  explicit SparseFlow(const FlowParams& params = {}) : params_(params) {}
+  // Sets the current frame; the previous one is kept for flow.
+  void next_frame(const cv::Mat& gray);
+  bool has_previous() const { return !previous_.empty(); }
+  // Flow (u, v) of each point from the previous frame to the current one;
+  // ok[i] = false where the track failed.
+  void flow(const std::vector<cv::Point2f>& current_points, std::vector<cv::Point2f>& flow,
+            std::vector<uint8_t>& ok) const;
+
+ private:
+  FlowParams params_;
+  std::vector<cv::Mat> previous_, current_;  // image pyramids
+};
+
+}  // namespace depot::slam
