@@ -8,8 +8,8 @@ namespace depot::slam {
 
 // Reads a class-names file. Surrounding white space (and a Windows '\r') is
 // trimmed and trailing blank lines are ignored. Throws depot::Error naming the
-// file when it cannot be opened, lists no class, or has a blank line between
-// names (which would shift every later class index).
+// file when it cannot be opened, lists no class, or has a blank line before a
+// name (which would shift every later class index).
 std::vector<std::string> load_class_names(const std::string& path);
 
 // Which of `names` to keep: all when `wanted` is empty, else exactly the

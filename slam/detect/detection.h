@@ -33,6 +33,8 @@ class Detector {
   // detectors that replay or simulate per-frame results.
   virtual std::vector<Detection> detect(const cv::Mat& bgr, double timestamp, long frame_index) = 0;
   virtual std::string name() const = 0;
+  // The classes it can output (empty when unknown), to check class tables.
+  virtual std::vector<std::string> class_names() const { return {}; }
 };
 
 }  // namespace depot::slam

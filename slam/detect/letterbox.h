@@ -10,7 +10,7 @@ namespace depot::slam {
 struct LetterboxTransform {
   float scale = 1.0f;
   float pad_x = 0.0f, pad_y = 0.0f;  // left and top padding in letterboxed pixels
-  cv::Size source, target;            // original and letterboxed image sizes
+  cv::Size source, target;           // original and letterboxed image sizes
 };
 
 struct Letterboxed {

@@ -14,8 +14,9 @@ float iou(const cv::Rect2f& a, const cv::Rect2f& b) {
 }
 
 std::vector<Detection> non_max_suppression(std::vector<Detection> detections, float iou_threshold) {
-  std::stable_sort(detections.begin(), detections.end(),
-                   [](const Detection& a, const Detection& b) { return a.confidence > b.confidence; });
+  std::stable_sort(
+      detections.begin(), detections.end(),
+      [](const Detection& a, const Detection& b) { return a.confidence > b.confidence; });
   std::vector<Detection> kept;
   kept.reserve(detections.size());
   for (Detection& d : detections) {

@@ -1,0 +1,91 @@
+#include "eval/motion_truth.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "common/error.h"
+#include "common/tum_io.h"
+
+namespace fs = std::filesystem;
+
+namespace depot::eval {
+namespace {
+
+std::string stamp_key(double t) {
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%.6f", t);
+  return buf;
+}
+
+}  // namespace
+
+bool MotionTruth::available(const std::string& dataset) {
+  return fs::is_regular_file(fs::path(dataset) / "labels.txt") &&
+         fs::is_regular_file(fs::path(dataset) / "object_poses.txt");
+}
+
+MotionTruth::MotionTruth(const std::string& dataset) : root_(dataset) {
+  if (!available(dataset)) fail(dataset, "no ground-truth labels (labels.txt, object_poses.txt): not a simulated dataset");
+  for (const auto& f : read_file_list((fs::path(dataset) / "labels.txt").string()))
+    label_files_[stamp_key(f.timestamp)] = f.path;
+  const std::string poses = (fs::path(dataset) / "object_poses.txt").string();
+  std::ifstream in(poses);
+  std::string line;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream s(line);
+    std::string stamp;
+    int id = 0, moving = 0;
+    double v[7];
+    if (!(s >> stamp >> id >> v[0] >> v[1] >> v[2] >> v[3] >> v[4] >> v[5] >> v[6] >> moving))
+      fail(poses + ":" + std::to_string(line_no), "expected 'timestamp id tx ty tz qx qy qz qw moving'");
+    if (moving) moving_ids_[stamp].insert(id);
+  }
+}
+
+std::vector<uint8_t> MotionTruth::on_moving_object(double timestamp, const std::vector<cv::KeyPoint>& keypoints) const {
+  const std::string key = stamp_key(timestamp);
+  auto it = label_files_.find(key);
+  if (it == label_files_.end()) fail(root_, "no label image for timestamp " + key);
+  const std::string path = (fs::path(root_) / it->second).string();
+  cv::Mat labels = cv::imread(path, cv::IMREAD_UNCHANGED);
+  if (labels.empty() || labels.type() != CV_16UC1) fail(path, "label image missing or not 16-bit");
+  std::vector<uint8_t> out(keypoints.size(), 0);
+  auto moving = moving_ids_.find(key);
+  if (moving == moving_ids_.end()) return out;
+  for (size_t i = 0; i < keypoints.size(); ++i) {
+    const int x = std::clamp(static_cast<int>(std::lround(keypoints[i].pt.x)), 0, labels.cols - 1);
+    const int y = std::clamp(static_cast<int>(std::lround(keypoints[i].pt.y)), 0, labels.rows - 1);
+    out[i] = moving->second.count(labels.at<uint16_t>(y, x)) ? 1 : 0;
+  }
+  return out;
+}
+
+void RejectionScore::add(const std::vector<uint8_t>& keep, const std::vector<uint8_t>& moving) {
+  for (size_t i = 0; i < keep.size() && i < moving.size(); ++i) {
+    const bool rejected = !keep[i];
+    if (rejected && moving[i]) ++true_positive;
+    else if (rejected) ++false_positive;
+    else if (moving[i]) ++false_negative;
+    else ++true_negative;
+  }
+}
+
+double RejectionScore::precision() const {
+  const long n = true_positive + false_positive;
+  return n ? static_cast<double>(true_positive) / n : NAN;
+}
+
+double RejectionScore::recall() const {
+  const long n = true_positive + false_negative;
+  return n ? static_cast<double>(true_positive) / n : NAN;
+}
+
+}  // namespace depot::eval

@@ -1,0 +1,44 @@
+#pragma once
+// Ground truth of which pixels lie on moving objects, from a simulated
+// dataset's instance labels (labels.txt, labels/) and per-frame moving flags
+// (object_poses.txt). Used to score dynamic-feature rejection.
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace depot::eval {
+
+class MotionTruth {
+ public:
+  // Throws depot::Error when the dataset has no labels (not simulated).
+  explicit MotionTruth(const std::string& dataset);
+  static bool available(const std::string& dataset);
+
+  // For each keypoint of the frame with this rgb timestamp: 1 when its pixel
+  // belongs to an object flagged moving in that frame.
+  std::vector<uint8_t> on_moving_object(double timestamp, const std::vector<cv::KeyPoint>& keypoints) const;
+
+ private:
+  std::string root_;
+  std::map<std::string, std::string> label_files_;     // stamp -> labels/x.png
+  std::map<std::string, std::set<int>> moving_ids_;    // stamp -> ids moving
+};
+
+// Precision / recall of rejection, counting keypoints: rejected = predicted
+// dynamic, on a moving object = truly dynamic.
+struct RejectionScore {
+  long true_positive = 0;   // rejected and moving
+  long false_positive = 0;  // rejected but static (static points thrown away)
+  long false_negative = 0;  // kept but moving
+  long true_negative = 0;
+  void add(const std::vector<uint8_t>& keep, const std::vector<uint8_t>& moving);
+  // NaN when undefined (nothing rejected / nothing moving).
+  double precision() const;
+  double recall() const;
+  long static_points() const { return false_positive + true_negative; }
+};
+
+}  // namespace depot::eval

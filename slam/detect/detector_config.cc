@@ -1,0 +1,118 @@
+#include "slam/detect/detector_config.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/error.h"
+
+namespace depot::slam {
+namespace {
+
+std::string where(const std::string& path, const YAML::Node& n) {
+  return path + ":" + std::to_string(n.Mark().line + 1);
+}
+
+std::string folder_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+std::string resolve(const std::string& folder, const std::string& p) {
+  if (p.empty() || p.front() == '/') return p;
+  return folder == "/" ? "/" + p : folder + "/" + p;
+}
+
+std::string read_string(const YAML::Node& root, const char* key, const std::string& path) {
+  const YAML::Node n = root[key];
+  if (!n) return {};
+  if (!n.IsScalar()) fail(where(path, n), std::string("'") + key + "' must be a string");
+  return n.as<std::string>();
+}
+
+template <typename T>
+T read_number(const YAML::Node& root, const char* key, T fallback, double lo, double hi,
+              const std::string& path) {
+  const YAML::Node n = root[key];
+  if (!n) return fallback;
+  T v;
+  try {
+    v = n.as<T>();
+  } catch (const YAML::Exception&) {
+    fail(where(path, n), std::string("bad value for '") + key + "'");
+  }
+  const double d = static_cast<double>(v);
+  if (!std::isfinite(d) || d < lo || d > hi)
+    fail(where(path, n), std::string("'") + key + "' must be in [" + std::to_string(lo) + ", " +
+                             std::to_string(hi) + "]");
+  return v;
+}
+
+}  // namespace
+
+const std::vector<std::string>& dnn_detector_types() {
+  static const std::vector<std::string> types{"yolov5", "darknet", "fastestdet"};
+  return types;
+}
+
+DetectorConfig load_detector_config(const std::string& yaml_path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(yaml_path);
+  } catch (const YAML::BadFile&) {
+    fail(yaml_path, "cannot open detector config");
+  } catch (const YAML::Exception& e) {
+    fail(yaml_path + ":" + std::to_string(e.mark.line + 1), "YAML syntax error: " + e.msg);
+  }
+  if (!root.IsMap()) fail(yaml_path, "detector config must be a YAML map");
+
+  static const std::vector<std::string> known{"type",       "model",       "config",
+                                              "names",      "input_width", "input_height",
+                                              "confidence", "nms",         "classes"};
+  for (const auto& kv : root) {
+    const std::string key = kv.first.as<std::string>();
+    if (std::find(known.begin(), known.end(), key) == known.end())
+      fail(where(yaml_path, kv.first), "unknown key '" + key + "'");
+  }
+
+  DetectorConfig c;
+  c.type = read_string(root, "type", yaml_path);
+  const auto& types = dnn_detector_types();
+  if (c.type.empty()) fail(yaml_path, "missing 'type' (yolov5, darknet or fastestdet)");
+  if (std::find(types.begin(), types.end(), c.type) == types.end())
+    fail(where(yaml_path, root["type"]),
+         "unknown detector type '" + c.type + "' (expected yolov5, darknet or fastestdet)");
+
+  const std::string folder = folder_of(yaml_path);
+  c.model = resolve(folder, read_string(root, "model", yaml_path));
+  c.config = resolve(folder, read_string(root, "config", yaml_path));
+  c.names = resolve(folder, read_string(root, "names", yaml_path));
+  if (c.model.empty()) fail(yaml_path, "missing 'model' (path of the model file)");
+  if (c.names.empty()) fail(yaml_path, "missing 'names' (path of the class names file)");
+  if (c.type == "darknet" && c.config.empty())
+    fail(yaml_path, "missing 'config' (path of the Darknet .cfg file)");
+  if (c.type != "darknet" && !c.config.empty())
+    fail(where(yaml_path, root["config"]), "'config' is for type darknet only");
+
+  c.input_width = read_number<int>(root, "input_width", 0, 0, 4096, yaml_path);
+  c.input_height = read_number<int>(root, "input_height", 0, 0, 4096, yaml_path);
+  if ((c.input_width == 0) != (c.input_height == 0))
+    fail(yaml_path, "give both 'input_width' and 'input_height' or neither");
+  c.confidence = read_number<float>(root, "confidence", c.confidence, 0.0, 1.0, yaml_path);
+  c.nms = read_number<float>(root, "nms", c.nms, 0.0, 1.0, yaml_path);
+
+  if (const YAML::Node cls = root["classes"]) {
+    if (!cls.IsSequence() && !cls.IsNull())
+      fail(where(yaml_path, cls), "'classes' must be a list of class names");
+    for (const YAML::Node& n : cls) {
+      if (!n.IsScalar() || n.as<std::string>().empty())
+        fail(where(yaml_path, n), "'classes' entries must be class names");
+      c.classes.push_back(n.as<std::string>());
+    }
+  }
+  return c;
+}
+
+}  // namespace depot::slam

@@ -1,0 +1,110 @@
+#pragma once
+// A simulated object detector for the simulator's datasets: it reads the
+// ground-truth boxes of a frame (boxes.txt) and degrades them the way a real
+// YOLO does (sim_detector_config.h): misses that are likelier for small and
+// occluded objects, localisation jitter and scale error, false positives,
+// class confusion, confidence falling with difficulty, and latency.
+//
+// It reads only the dataset's files (rgb.txt, boxes.txt, classes.txt,
+// calibration.yaml), never the simulator's code. Everything is seeded: frame
+// i's detections depend only on the config, the dataset and i. Every real
+// object draws from its own stream (seed, frame, instance id) with a fixed
+// number of draws, and false positives from another, so changing one setting
+// (say the jitter) leaves the other random decisions (which boxes are missed)
+// unchanged.
+//
+// The model, per ground-truth box of area A (pixels), visible pixels V, in an
+// image of W x H pixels:
+//   smallness  s = clamp(1 - sqrt(A / (small_area W H)), 0, 1)
+//   fill       f = V / A;  occlusion o = clamp(1 - f / f_class, 0, 1), where
+//              f_class = reference_fill(class) (an unoccluded object's fill)
+//   difficulty d = 1 - (1 - s)(1 - o)
+//   P(miss)      = 1 - (1 - miss_rate)(1 - small_miss_boost s)(1 - occlusion_miss o)
+//   box          = centre + N(0, jitter (1 + g d)) x size,
+//                  size x exp(N(0, scale_error (1 + g d))) per axis,
+//                  g = hard_jitter_gain; clipped to the image (dropped if empty)
+//   confidence   = clamp(max_c - (max_c - min_c) d + N(0, confidence_noise), min_c, 1)
+// Detections of real objects come in boxes.txt order, false positives after.
+#include <string>
+#include <vector>
+
+#include "slam/detect/detection.h"
+#include "slam/detect/sim_detector_config.h"
+
+namespace depot::slam {
+
+// One line of a dataset's boxes.txt.
+struct TruthBox {
+  int id = 0;  // instance id (objects.json, labels/)
+  std::string class_name;
+  int class_id = -1;                   // index in classes.txt
+  int x1 = 0, y1 = 0, x2 = 0, y2 = 0;  // pixels, x2/y2 exclusive
+  int visible_pixels = 0;
+  bool moving = false;
+
+  int area() const { return (x2 - x1) * (y2 - y1); }
+  cv::Rect2f rect() const {
+    return cv::Rect2f(static_cast<float>(x1), static_cast<float>(y1), static_cast<float>(x2 - x1),
+                      static_cast<float>(y2 - y1));
+  }
+};
+
+class SimDetector : public Detector {
+ public:
+  // Reads `dataset_dir`'s rgb.txt, boxes.txt, classes.txt and
+  // calibration.yaml. Throws depot::Error naming the file (and line) when one
+  // is missing or malformed, and for an invalid config.
+  explicit SimDetector(const std::string& dataset_dir, const SimDetectorConfig& config = {});
+
+  // The frame is found by its rgb timestamp (within 1e-4 s) in rgb.txt;
+  // with latency k the detections of the rgb.txt frame k before it are
+  // returned (none for the first k frames). `bgr` is not looked at, but when
+  // given it must have the dataset's image size. Throws depot::Error for a
+  // timestamp that is not a frame of the dataset. `frame_index` is not used:
+  // the dataset's own frame order defines the lag and the random streams.
+  std::vector<Detection> detect(const cv::Mat& bgr, double timestamp, long frame_index) override;
+  std::string name() const override { return config_.perfect ? "sim-perfect" : "sim"; }
+
+  // Detections of the rgb.txt frame `index`, without latency. Const and
+  // thread-safe.
+  std::vector<Detection> detect_frame(size_t index) const;
+
+  // The dataset.
+  size_t frame_count() const { return timestamps_.size(); }
+  double frame_timestamp(size_t index) const { return timestamps_.at(index); }
+  // The rgb.txt frame within 1e-4 s of `timestamp`, or -1.
+  long find_frame(double timestamp) const;
+  const std::vector<TruthBox>& truth(size_t index) const { return truth_.at(index); }
+  // classes.txt; class_id indexes it.
+  std::vector<std::string> class_names() const override { return classes_; }
+  cv::Size image_size() const { return image_size_; }
+  const SimDetectorConfig& config() const { return config_; }
+
+  // The model's terms (header comment), each in [0, 1].
+  double smallness(const TruthBox& box) const;
+  double occlusion(const TruthBox& box) const;
+  double difficulty(const TruthBox& box) const;
+  double miss_probability(const TruthBox& box) const;
+  // Fill of an unoccluded object of the class: the 90th percentile of the
+  // class's fills in boxes.txt, or config().default_fill with fewer than 10
+  // boxes.
+  double reference_fill(const std::string& class_name) const;
+
+ private:
+  // The detection of one real object, or false when it is missed.
+  bool detect_box(const TruthBox& box, size_t frame, Detection& out) const;
+  void add_false_positives(size_t frame, std::vector<Detection>& out) const;
+
+  std::string dir_;
+  SimDetectorConfig config_;
+  std::vector<double> timestamps_;            // rgb.txt order
+  std::vector<std::vector<TruthBox>> truth_;  // per frame
+  std::vector<std::string> classes_;
+  std::vector<double> reference_fill_;  // per class id
+  // Sizes (w, h) of all ground-truth boxes per class id (false positives).
+  std::vector<std::vector<cv::Size>> class_sizes_;
+  std::vector<std::vector<int>> confusions_;  // per class id: partner class ids
+  cv::Size image_size_;
+};
+
+}  // namespace depot::slam

@@ -1,0 +1,159 @@
+#include "slam/detect/sim_detector_config.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "common/error.h"
+
+namespace depot::slam {
+namespace {
+
+std::string at(const std::string& where, const YAML::Node& n) {
+  const YAML::Mark m = n.Mark();
+  return m.line >= 0 ? where + ":" + std::to_string(m.line + 1) : where;
+}
+
+template <typename T>
+T read(const YAML::Node& value, const std::string& key, const std::string& where) {
+  try {
+    return value.as<T>();
+  } catch (const YAML::Exception&) {
+    fail(at(where, value), "bad value for '" + key + "'");
+  }
+}
+
+std::string number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+// The real-valued fields and their ranges: [lo, hi], or (lo, hi] when
+// `open_lo`.
+struct DoubleField {
+  const char* key;
+  double SimDetectorConfig::*field;
+  double lo, hi;
+  bool open_lo;
+};
+
+const DoubleField kDoubles[] = {
+    {"miss_rate", &SimDetectorConfig::miss_rate, 0, 1, false},
+    {"small_miss_boost", &SimDetectorConfig::small_miss_boost, 0, 1, false},
+    {"small_area", &SimDetectorConfig::small_area, 0, 1, true},
+    {"occlusion_miss", &SimDetectorConfig::occlusion_miss, 0, 1, false},
+    {"default_fill", &SimDetectorConfig::default_fill, 0, 1, true},
+    {"jitter", &SimDetectorConfig::jitter, 0, 1, false},
+    {"scale_error", &SimDetectorConfig::scale_error, 0, 1, false},
+    {"hard_jitter_gain", &SimDetectorConfig::hard_jitter_gain, 0, 10, false},
+    {"min_confidence", &SimDetectorConfig::min_confidence, 0, 1, false},
+    {"max_confidence", &SimDetectorConfig::max_confidence, 0, 1, false},
+    {"confidence_noise", &SimDetectorConfig::confidence_noise, 0, 1, false},
+    {"false_positive_rate", &SimDetectorConfig::false_positive_rate, 0, 10, false},
+    {"false_positive_max_confidence", &SimDetectorConfig::false_positive_max_confidence, 0, 1,
+     false},
+    {"class_confusion", &SimDetectorConfig::class_confusion, 0, 1, false},
+};
+
+void check(const DoubleField& f, double v, const std::string& where) {
+  const bool low = f.open_lo ? v <= f.lo : v < f.lo;
+  if (!std::isfinite(v) || low || v > f.hi)
+    fail(where, std::string("'") + f.key + "' = " + number(v) + " is outside " +
+                    (f.open_lo ? "(" : "[") + number(f.lo) + ", " + number(f.hi) + "]");
+}
+
+void check_latency(int latency, const std::string& where) {
+  if (latency < 0 || latency > 30)
+    fail(where, "'latency_frames' = " + std::to_string(latency) + " is outside [0, 30]");
+}
+
+void check_confusions(const std::map<std::string, std::vector<std::string>>& confusions,
+                      const std::string& where) {
+  for (const auto& [cls, partners] : confusions) {
+    if (cls.empty()) fail(where, "'confusions' has an empty class name");
+    for (const std::string& p : partners) {
+      if (p.empty()) fail(where, "'confusions' of '" + cls + "' has an empty class name");
+      if (p == cls) fail(where, "'confusions' of '" + cls + "' lists the class itself");
+    }
+  }
+}
+
+// Checks between fields, once all are read.
+void check_consistency(const SimDetectorConfig& c, const std::string& where) {
+  if (c.min_confidence > c.max_confidence)
+    fail(where, "'min_confidence' (" + number(c.min_confidence) + ") exceeds 'max_confidence' (" +
+                    number(c.max_confidence) + ")");
+  if (c.min_confidence > c.false_positive_max_confidence)
+    fail(where, "'min_confidence' (" + number(c.min_confidence) +
+                    ") exceeds 'false_positive_max_confidence' (" +
+                    number(c.false_positive_max_confidence) + ")");
+}
+
+}  // namespace
+
+void validate(const SimDetectorConfig& c, const std::string& where) {
+  for (const DoubleField& f : kDoubles) check(f, c.*f.field, where);
+  check_latency(c.latency_frames, where);
+  check_confusions(c.confusions, where);
+  check_consistency(c, where);
+}
+
+SimDetectorConfig load_sim_detector_config(const YAML::Node& node, const std::string& where,
+                                           const SimDetectorConfig& defaults) {
+  SimDetectorConfig c = defaults;
+  if (!node || node.IsNull()) return c;
+  if (!node.IsMap()) fail(at(where, node), "the simulated detector config must be a YAML map");
+  for (const auto& kv : node) {
+    const std::string key = kv.first.as<std::string>();
+    const YAML::Node& v = kv.second;
+    const std::string here = at(where, v);
+    if (key == "seed") {
+      c.seed = read<uint64_t>(v, key, where);
+    } else if (key == "perfect") {
+      c.perfect = read<bool>(v, key, where);
+    } else if (key == "latency_frames") {
+      c.latency_frames = read<int>(v, key, where);
+      check_latency(c.latency_frames, here);
+    } else if (key == "confusions") {
+      if (!v.IsMap() && !v.IsNull())
+        fail(here, "'confusions' must be a map: class -> [classes it is mistaken for]");
+      c.confusions.clear();
+      if (v.IsMap()) {
+        for (const auto& entry : v) {
+          const std::string cls = read<std::string>(entry.first, key, where);
+          c.confusions[cls] =
+              entry.second.IsScalar()
+                  ? std::vector<std::string>{read<std::string>(entry.second, key, where)}
+                  : read<std::vector<std::string>>(entry.second, key + ": " + cls, where);
+        }
+      }
+      check_confusions(c.confusions, here);
+    } else {
+      const DoubleField* f = nullptr;
+      for (const DoubleField& d : kDoubles)
+        if (key == d.key) f = &d;
+      if (!f) fail(at(where, kv.first), "unknown key '" + key + "'");
+      c.*f->field = read<double>(v, key, where);
+      check(*f, c.*f->field, here);
+    }
+  }
+  check_consistency(c, where);
+  return c;
+}
+
+SimDetectorConfig load_sim_detector_config_file(const std::string& path,
+                                                const SimDetectorConfig& defaults) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    fail(path, "cannot open the simulated detector config");
+  } catch (const YAML::Exception& e) {
+    fail(path + ":" + std::to_string(e.mark.line + 1), "YAML syntax error: " + e.msg);
+  }
+  return load_sim_detector_config(root, path, defaults);
+}
+
+}  // namespace depot::slam

@@ -1,0 +1,131 @@
+// The simulated detector's YAML config: defaults, every key, range checks and
+// error messages naming file and line.
+#include "slam/detect/sim_detector_config.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "common/error.h"
+
+namespace depot::slam {
+namespace {
+
+// The message of the depot::Error that `f` throws ("" if none).
+template <typename F>
+std::string error_of(F f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+SimDetectorConfig from(const std::string& yaml) {
+  return load_sim_detector_config(YAML::Load(yaml), "cfg.yaml");
+}
+
+TEST(SimDetectorConfig, DefaultsAreRealisticAndValid) {
+  const SimDetectorConfig c;
+  EXPECT_FALSE(c.perfect);
+  EXPECT_GT(c.miss_rate, 0.0);
+  EXPECT_GT(c.jitter, 0.0);
+  EXPECT_GT(c.false_positive_rate, 0.0);
+  EXPECT_EQ(c.latency_frames, 0);
+  EXPECT_NO_THROW(validate(c, "defaults"));
+  // An empty or null node keeps the defaults.
+  EXPECT_EQ(from("{}").miss_rate, c.miss_rate);
+  EXPECT_EQ(load_sim_detector_config(YAML::Node(), "x").jitter, c.jitter);
+}
+
+TEST(SimDetectorConfig, ReadsEveryKey) {
+  const SimDetectorConfig c = from(
+      "seed: 42\nperfect: true\nmiss_rate: 0.1\nsmall_miss_boost: 0.2\nsmall_area: 0.02\n"
+      "occlusion_miss: 0.3\ndefault_fill: 0.4\njitter: 0.05\nscale_error: 0.06\n"
+      "hard_jitter_gain: 2\nmin_confidence: 0.25\nmax_confidence: 0.9\nconfidence_noise: 0.1\n"
+      "false_positive_rate: 1.5\nfalse_positive_max_confidence: 0.45\nclass_confusion: 0.07\n"
+      "confusions: {dog: [cat, pig], chair: cart}\nlatency_frames: 3\n");
+  EXPECT_EQ(c.seed, 42u);
+  EXPECT_TRUE(c.perfect);
+  EXPECT_DOUBLE_EQ(c.miss_rate, 0.1);
+  EXPECT_DOUBLE_EQ(c.small_miss_boost, 0.2);
+  EXPECT_DOUBLE_EQ(c.small_area, 0.02);
+  EXPECT_DOUBLE_EQ(c.occlusion_miss, 0.3);
+  EXPECT_DOUBLE_EQ(c.default_fill, 0.4);
+  EXPECT_DOUBLE_EQ(c.jitter, 0.05);
+  EXPECT_DOUBLE_EQ(c.scale_error, 0.06);
+  EXPECT_DOUBLE_EQ(c.hard_jitter_gain, 2.0);
+  EXPECT_DOUBLE_EQ(c.min_confidence, 0.25);
+  EXPECT_DOUBLE_EQ(c.max_confidence, 0.9);
+  EXPECT_DOUBLE_EQ(c.confidence_noise, 0.1);
+  EXPECT_DOUBLE_EQ(c.false_positive_rate, 1.5);
+  EXPECT_DOUBLE_EQ(c.false_positive_max_confidence, 0.45);
+  EXPECT_DOUBLE_EQ(c.class_confusion, 0.07);
+  ASSERT_EQ(c.confusions.size(), 2u);
+  EXPECT_EQ(c.confusions.at("dog"), (std::vector<std::string>{"cat", "pig"}));
+  EXPECT_EQ(c.confusions.at("chair"), (std::vector<std::string>{"cart"}));
+  EXPECT_EQ(c.latency_frames, 3);
+}
+
+TEST(SimDetectorConfig, RangeErrorsNameTheLineAndTheKey) {
+  EXPECT_EQ(error_of([] { from("jitter: 0.01\nmiss_rate: 1.5\n"); }),
+            "cfg.yaml:2: 'miss_rate' = 1.5 is outside [0, 1]");
+  EXPECT_EQ(error_of([] { from("class_confusion: -0.1"); }),
+            "cfg.yaml:1: 'class_confusion' = -0.1 is outside [0, 1]");
+  EXPECT_EQ(error_of([] { from("latency_frames: 31"); }),
+            "cfg.yaml:1: 'latency_frames' = 31 is outside [0, 30]");
+  EXPECT_EQ(error_of([] { from("latency_frames: -1"); }),
+            "cfg.yaml:1: 'latency_frames' = -1 is outside [0, 30]");
+  EXPECT_EQ(error_of([] { from("small_area: 0"); }),
+            "cfg.yaml:1: 'small_area' = 0 is outside (0, 1]");
+  EXPECT_EQ(error_of([] { from("false_positive_rate: 11"); }),
+            "cfg.yaml:1: 'false_positive_rate' = 11 is outside [0, 10]");
+  EXPECT_EQ(error_of([] { from("min_confidence: 0.6\nfalse_positive_max_confidence: 0.5"); }),
+            "cfg.yaml: 'min_confidence' (0.6) exceeds 'false_positive_max_confidence' (0.5)");
+  // Order does not matter for checks between fields.
+  EXPECT_NO_THROW(
+      from("min_confidence: 0.97\nmax_confidence: 0.99\n"
+           "false_positive_max_confidence: 0.98"));
+}
+
+TEST(SimDetectorConfig, BadKeysAndValuesAreErrors) {
+  EXPECT_EQ(error_of([] { from("miss_rate: 0.1\nmis_rate: 0.2"); }),
+            "cfg.yaml:2: unknown key 'mis_rate'");
+  EXPECT_EQ(error_of([] { from("jitter: lots"); }), "cfg.yaml:1: bad value for 'jitter'");
+  EXPECT_EQ(error_of([] { from("perfect: maybe"); }), "cfg.yaml:1: bad value for 'perfect'");
+  EXPECT_EQ(error_of([] { from("latency_frames: 1.5"); }),
+            "cfg.yaml:1: bad value for 'latency_frames'");
+  EXPECT_EQ(error_of([] { from("[1, 2]"); }),
+            "cfg.yaml:1: the simulated detector config must be a YAML map");
+  EXPECT_EQ(error_of([] { from("confusions: [dog, cat]"); }),
+            "cfg.yaml:1: 'confusions' must be a map: class -> [classes it is mistaken for]");
+  EXPECT_EQ(error_of([] { from("confusions: {dog: [dog]}"); }),
+            "cfg.yaml:1: 'confusions' of 'dog' lists the class itself");
+  SimDetectorConfig c;
+  c.scale_error = std::nan("");
+  EXPECT_EQ(error_of([&] { validate(c, "here"); }), "here: 'scale_error' = nan is outside [0, 1]");
+}
+
+TEST(SimDetectorConfig, LoadsFilesWithClearErrors) {
+  const std::string dir = ::testing::TempDir() + "/sim_detector_config_test";
+  std::filesystem::create_directories(dir);
+  const std::string good = dir + "/good.yaml", bad = dir + "/bad.yaml";
+  std::ofstream(good) << "# a detector lagging two frames\nlatency_frames: 2\nseed: 7\n";
+  std::ofstream(bad) << "miss_rate: 0.1\njitter: [0.1\n";
+  const SimDetectorConfig c = load_sim_detector_config_file(good);
+  EXPECT_EQ(c.latency_frames, 2);
+  EXPECT_EQ(c.seed, 7u);
+  EXPECT_EQ(error_of([&] { load_sim_detector_config_file(dir + "/none.yaml"); }),
+            dir + "/none.yaml: cannot open the simulated detector config");
+  EXPECT_EQ(error_of([&] { load_sim_detector_config_file(bad); }).rfind(bad + ":", 0), 0u);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace depot::slam

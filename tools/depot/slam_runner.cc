@@ -1,0 +1,184 @@
+#include "tools/depot/slam_runner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "common/error.h"
+#include "common/interrupt.h"
+#include "common/progress.h"
+#include "slam/detect/detection_file.h"
+#include "slam/detect/detector_factory.h"
+#include "slam/detect/sim_detector.h"
+#include "slam/detect/sim_detector_config.h"
+#include "slam/io/settings.h"
+#include "slam/io/tum_sequence.h"
+#include "slam/system/system.h"
+
+namespace fs = std::filesystem;
+
+namespace depot::cli {
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
+}
+
+std::string shipped(const std::string& relative) { return std::string(DEPOT_SOURCE_DIR) + "/" + relative; }
+
+std::unique_ptr<slam::Detector> make_detector(const RunOptions& o, const std::string& type) {
+  if (type == "sim") {
+    slam::SimDetectorConfig config;
+    if (!o.detector_config.empty()) config = slam::load_sim_detector_config_file(o.detector_config);
+    config.seed = o.detector_seed;
+    return std::make_unique<slam::SimDetector>(o.dataset, config);
+  }
+  if (type == "file") {
+    if (o.detections.empty()) fail("--detector file", "needs --detections FILE");
+    return std::make_unique<slam::FileDetector>(o.detections);
+  }
+  const auto& dnn = slam::dnn_detector_types();
+  if (std::find(dnn.begin(), dnn.end(), type) == dnn.end())
+    fail("--detector", "unknown detector '" + type + "' (expected sim, file, yolov5, darknet, fastestdet)");
+  std::string config = o.detector_config;
+  if (config.empty()) {
+    config = type == "darknet" ? shipped("scenes/detectors/yolo_fastest.yaml")
+             : type == "fastestdet" ? shipped("scenes/detectors/fastestdet.yaml")
+                                    : shipped("scenes/detectors/yolov5s.yaml");
+  }
+  return slam::make_dnn_detector(slam::load_detector_config(config));
+}
+
+}  // namespace
+
+RunSummary run_sequence(const RunOptions& o) {
+  RunSummary summary;
+  slam::TumSequence sequence(o.dataset);
+  slam::SlamSettings settings;
+  summary.settings_source = "defaults (TUM fr3 Kinect)";
+  if (!sequence.calibration_path().empty()) {
+    settings = slam::load_settings(sequence.calibration_path(), settings);
+    summary.settings_source = sequence.calibration_path();
+  }
+  if (!o.settings.empty()) {
+    settings = slam::load_settings(o.settings, settings);
+    summary.settings_source = o.settings;
+  }
+  if (o.sync) settings.threaded_mapping = false;
+  sequence.set_depth_factor(settings.camera.depth_factor);
+  const size_t n = o.frames ? std::min(*o.frames, sequence.size()) : sequence.size();
+
+  // Rejection: mode, detector and class table, all checked before any work.
+  const slam::RejectionMode mode = slam::parse_rejection_mode(o.mode);
+  const bool simulated = eval::MotionTruth::available(o.dataset);
+  std::unique_ptr<slam::Detector> detector;
+  std::unique_ptr<slam::RejectionFilter> filter;
+  if (mode != slam::RejectionMode::kOrb) {
+    std::string type = o.detector.empty() ? (simulated ? "sim" : "darknet") : o.detector;
+    if (slam::mode_uses_detector(mode)) {
+      detector = make_detector(o, type);
+      summary.detector_name = detector->name();
+    }
+    const std::string table_path =
+        !o.classes.empty() ? o.classes
+                           : shipped(type == "sim" ? "scenes/apriori/depot.yaml" : "scenes/apriori/coco.yaml");
+    slam::AprioriClasses classes = slam::AprioriClasses::load(table_path);
+    if (detector && !detector->class_names().empty())
+      classes.check_against(detector->class_names(), table_path, detector->name());
+    filter = std::make_unique<slam::RejectionFilter>(mode, classes, detector.get());
+  }
+  std::unique_ptr<eval::MotionTruth> truth;
+  if (simulated) truth = std::make_unique<eval::MotionTruth>(o.dataset);
+  summary.scored = truth != nullptr;
+
+  std::ofstream stats;
+  if (!o.stats_csv.empty()) {
+    stats.open(o.stats_csv + ".tmp");
+    if (!stats) fail(o.stats_csv, "cannot write statistics file");
+    stats << "frame,timestamp,state,keypoints,kept,Z,Q,Q_to_P,P,detections,flow_u,flow_v,z,wait_ms,detect_ms,flow_ms,"
+             "filter_ms,total_ms,true_positive,false_positive,false_negative\n";
+  }
+
+  slam::System system(settings, filter.get());
+  std::vector<double> total, extract, track, filter_ms, wait_ms, detect_ms, flow_ms;
+  Progress progress("slam " + o.mode, n, !o.quiet);
+  cv::Mat bgr, depth;
+  for (size_t i = 0; i < n; ++i) {
+    throw_if_interrupted(o.dataset);
+    sequence.load(i, bgr, depth);
+    const double t = sequence.entry(i).rgb_timestamp;
+    slam::TrackResult r = system.track(bgr, depth, t);
+    summary.lost += r.state == slam::TrackingState::kLost;
+    summary.relocalized += r.state == slam::TrackingState::kRelocalized;
+    total.push_back(r.timing.total_ms);
+    extract.push_back(r.timing.extract_ms);
+    track.push_back(r.timing.track_ms);
+    slam::RejectionStats rs;
+    if (filter) {
+      rs = filter->last_stats();
+      filter_ms.push_back(rs.filter_ms);
+      wait_ms.push_back(rs.wait_ms);
+      detect_ms.push_back(rs.detect_ms);
+      flow_ms.push_back(rs.flow_ms);
+    } else {
+      rs.total = rs.kept = rs.p = r.keypoints;
+    }
+    eval::RejectionScore frame_score;
+    if (truth && filter) {
+      frame_score.add(filter->last_keep(), truth->on_moving_object(t, filter->last_keypoints()));
+      summary.score.true_positive += frame_score.true_positive;
+      summary.score.false_positive += frame_score.false_positive;
+      summary.score.false_negative += frame_score.false_negative;
+      summary.score.true_negative += frame_score.true_negative;
+    }
+    if (stats.is_open()) {
+      char line[512];
+      std::snprintf(line, sizeof(line),
+                    "%zu,%.6f,%s,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%.2f,%.2f,%ld,%ld,%ld\n", i, t,
+                    slam::tracking_state_name(r.state), rs.total, rs.kept, rs.z, rs.q, rs.q_to_p, rs.p, rs.detections,
+                    rs.mean_flow.x, rs.mean_flow.y, rs.z_threshold, rs.wait_ms, rs.detect_ms, rs.flow_ms, rs.filter_ms,
+                    r.timing.total_ms, frame_score.true_positive, frame_score.false_positive,
+                    frame_score.false_negative);
+      stats << line;
+    }
+    char detail[160];
+    std::snprintf(detail, sizeof(detail), "frame %zu %s features %d/%d inliers %d %.1f ms", i,
+                  slam::tracking_state_name(r.state), r.kept, r.keypoints, r.stats.inliers, r.timing.total_ms);
+    progress.update(i + 1, detail);
+  }
+  progress.finish();
+  system.finish();
+  summary.frames = n;
+  summary.trajectory = system.trajectory();
+  summary.keyframes_trajectory = system.keyframe_trajectory();
+  if (summary.trajectory.empty()) fail(o.dataset, "tracking never initialised (too few keypoints with depth?)");
+  summary.keyframes = system.n_keyframes();
+  summary.map_points = system.n_map_points();
+  summary.median_ms = percentile(total, 0.5);
+  summary.p95_ms = percentile(total, 0.95);
+  summary.extract_ms = median(extract);
+  summary.track_ms = median(track);
+  summary.filter_ms = median(filter_ms);
+  summary.wait_ms = median(wait_ms);
+  summary.detect_ms = median(detect_ms);
+  summary.flow_ms = median(flow_ms);
+  summary.ba_ms_total = system.mapping_stats().ba_ms;
+  if (stats.is_open()) {
+    stats.close();
+    fs::rename(o.stats_csv + ".tmp", o.stats_csv);
+  }
+  return summary;
+}
+
+}  // namespace depot::cli

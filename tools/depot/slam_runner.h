@@ -1,0 +1,48 @@
+#pragma once
+// Runs the SLAM system over one TUM folder in one rejection mode, with the
+// chosen detector, and collects what `depot slam run` and the ablation
+// report: trajectory, timings, rejection statistics and (for simulated
+// datasets) rejection precision/recall against ground truth.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/tum_io.h"
+#include "eval/motion_truth.h"
+#include "slam/reject/rejection_filter.h"
+
+namespace depot::cli {
+
+struct RunOptions {
+  std::string dataset;
+  std::string settings;        // optional settings YAML
+  std::string mode = "orb";    // orb | orb+yolo | orb+lk | full
+  std::string detector = "";   // sim | darknet | fastestdet | yolov5 | file ("" = sim on simulated data)
+  std::string detector_config; // YAML for dnn detectors / the simulated detector
+  std::string detections;      // detections file for --detector file
+  std::string classes;         // a-priori class table (default by detector)
+  uint64_t detector_seed = 1;
+  std::optional<size_t> frames;
+  bool sync = false;
+  bool quiet = false;
+  std::string stats_csv;       // per-frame statistics
+};
+
+struct RunSummary {
+  size_t frames = 0;
+  int lost = 0, relocalized = 0;
+  size_t keyframes = 0, map_points = 0;
+  double median_ms = 0, p95_ms = 0, extract_ms = 0, track_ms = 0;
+  double filter_ms = 0, wait_ms = 0, detect_ms = 0, flow_ms = 0;  // medians
+  double ba_ms_total = 0;
+  std::vector<StampedPose> trajectory;
+  std::vector<StampedPose> keyframes_trajectory;
+  bool scored = false;
+  eval::RejectionScore score;
+  std::string settings_source;
+  std::string detector_name;
+};
+
+RunSummary run_sequence(const RunOptions& options);
+
+}  // namespace depot::cli
