@@ -8,11 +8,13 @@
 namespace depot::slam {
 
 struct FlowParams {
-  int window = 21;  // px
+  int window = 15;  // px
   int levels = 3;
-  int iterations = 20;
-  float max_error = 30.0f;        // LK residual above which a track fails
-  float max_forward_backward = 1.0f;  // px; consistency check (0 = off)
+  int iterations = 10;
+  float max_error = 30.0f;  // LK residual above which a track fails
+  // Forward-backward consistency check in px (0 = off). It doubles the cost
+  // and the threshold test already rejects wild tracks, so it is off.
+  float max_forward_backward = 0.0f;
 };
 
 class SparseFlow {

@@ -57,6 +57,7 @@ void RejectionFilter::filter(const FrameImages& images, const std::vector<cv::Ke
   const auto t0 = std::chrono::steady_clock::now();
   stats_.detections = static_cast<int>(detections_.size());
   keep.assign(keypoints.size(), 1);
+  sets_.assign(keypoints.size(), PointSet::kP);
 
   if (mode_uses_flow(mode_)) {
     const auto tf = std::chrono::steady_clock::now();
@@ -73,6 +74,7 @@ void RejectionFilter::filter(const FrameImages& images, const std::vector<cv::Ke
       for (size_t i = 0; i < keypoints.size(); ++i) {
         keep[i] = !inside[i];
         (inside[i] ? stats_.z : stats_.p)++;
+        if (inside[i]) sets_[i] = PointSet::kZ;
       }
       break;
     }
@@ -98,7 +100,15 @@ void RejectionFilter::filter(const FrameImages& images, const std::vector<cv::Ke
       break;
     }
     case RejectionMode::kFull: {
-      const std::vector<PointSet> sets = assign_point_sets(keypoints, detections_, classes_);
+      std::vector<PointSet> sets = assign_point_sets(keypoints, detections_, classes_);
+      if (params_.background_depth_margin > 0) {
+        std::vector<float> depth(keypoints.size(), 0.0f);
+        for (size_t i = 0; i < keypoints.size(); ++i) {
+          const int x = static_cast<int>(keypoints[i].pt.x + 0.5f), y = static_cast<int>(keypoints[i].pt.y + 0.5f);
+          if (x >= 0 && y >= 0 && x < images.depth.cols && y < images.depth.rows) depth[i] = images.depth.at<float>(y, x);
+        }
+        move_background_to_q(keypoints, depth, detections_, classes_, params_.background_depth_margin, sets);
+      }
       std::vector<size_t> q_index, p_sample;
       std::vector<size_t> p_index;
       for (size_t i = 0; i < sets.size(); ++i) {
@@ -139,6 +149,7 @@ void RejectionFilter::filter(const FrameImages& images, const std::vector<cv::Ke
         stats_.q_to_p = stats_.q;  // no previous frame: nothing to test against
       }
       stats_.p = static_cast<int>(p_index.size()) + stats_.q_to_p;
+      sets_ = sets;
       break;
     }
   }

@@ -28,7 +28,12 @@ bool mode_uses_flow(RejectionMode mode);
 struct RejectionParams {
   FlowParams flow;
   FlowTestParams test;
-  int max_reference_points = 300;  // P points sampled for the mean flow
+  int max_reference_points = 100;  // P points sampled for the mean flow
+  // Our extension, off by default (0 = the paper exactly): in `full`, a
+  // point of a dynamic box that lies more than this far (m) behind the
+  // object (the box's near depth) is background seen around the object; it
+  // goes to Q and the flow test decides, like the paper's overlap rule.
+  float background_depth_margin = 0.0f;
 };
 
 // Per-frame statistics.
@@ -59,6 +64,8 @@ class RejectionFilter : public KeypointFilter {
   // The last frame's keypoints (all, before rejection) and decisions.
   const std::vector<cv::KeyPoint>& last_keypoints() const { return keypoints_; }
   const std::vector<uint8_t>& last_keep() const { return keep_; }
+  // The set of each keypoint (full mode; P for the other modes).
+  const std::vector<PointSet>& last_sets() const { return sets_; }
 
  private:
   RejectionMode mode_;
@@ -71,6 +78,7 @@ class RejectionFilter : public KeypointFilter {
   std::vector<Detection> detections_;
   std::vector<cv::KeyPoint> keypoints_;
   std::vector<uint8_t> keep_;
+  std::vector<PointSet> sets_;
 };
 
 }  // namespace depot::slam

@@ -64,6 +64,10 @@ void add_rejection_options(CLI::App* cmd, RunOptions& o) {
   cmd->add_option("--classes", o.classes, "A-priori class table YAML (default: scenes/apriori/depot|coco.yaml)");
   cmd->add_option("--detector-seed", o.detector_seed, "Seed of the simulated detector's errors");
   cmd->add_option("--settings", o.settings, "Settings YAML (default: the dataset's calibration.yaml)");
+  cmd->add_option("--background-margin", o.background_depth_margin,
+                  "Our extension of full: points this far (m) behind a dynamic box's object go to the flow test "
+                  "(0 = the paper exactly)")
+      ->check(CLI::Range(0.0, 10.0));
   cmd->add_flag("--sync", o.sync, "Run local mapping in the tracking thread (reproducible)");
 }
 

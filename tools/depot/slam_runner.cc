@@ -96,7 +96,9 @@ RunSummary run_sequence(const RunOptions& o) {
     slam::AprioriClasses classes = slam::AprioriClasses::load(table_path);
     if (detector && !detector->class_names().empty())
       classes.check_against(detector->class_names(), table_path, detector->name());
-    filter = std::make_unique<slam::RejectionFilter>(mode, classes, detector.get());
+    slam::RejectionParams params;
+    params.background_depth_margin = o.background_depth_margin;
+    filter = std::make_unique<slam::RejectionFilter>(mode, classes, detector.get(), params);
   }
   std::unique_ptr<eval::MotionTruth> truth;
   if (simulated) truth = std::make_unique<eval::MotionTruth>(o.dataset);
@@ -107,7 +109,7 @@ RunSummary run_sequence(const RunOptions& o) {
     stats.open(o.stats_csv + ".tmp");
     if (!stats) fail(o.stats_csv, "cannot write statistics file");
     stats << "frame,timestamp,state,keypoints,kept,Z,Q,Q_to_P,P,detections,flow_u,flow_v,z,wait_ms,detect_ms,flow_ms,"
-             "filter_ms,total_ms,true_positive,false_positive,false_negative\n";
+             "filter_ms,total_ms,true_positive,false_positive,false_negative,false_positive_z,false_positive_q\n";
   }
 
   slam::System system(settings, filter.get());
@@ -135,8 +137,15 @@ RunSummary run_sequence(const RunOptions& o) {
       rs.total = rs.kept = rs.p = r.keypoints;
     }
     eval::RejectionScore frame_score;
+    long fp_z = 0, fp_q = 0;
     if (truth && filter) {
-      frame_score.add(filter->last_keep(), truth->on_moving_object(t, filter->last_keypoints()));
+      const std::vector<uint8_t> moving = truth->on_moving_object(t, filter->last_keypoints());
+      frame_score.add(filter->last_keep(), moving);
+      // Where the false rejections come from: Z (boxes) or Q (flow test).
+      for (size_t k = 0; k < moving.size(); ++k) {
+        if (filter->last_keep()[k] || moving[k]) continue;
+        (filter->last_sets()[k] == slam::PointSet::kZ ? fp_z : fp_q)++;
+      }
       summary.score.true_positive += frame_score.true_positive;
       summary.score.false_positive += frame_score.false_positive;
       summary.score.false_negative += frame_score.false_negative;
@@ -145,11 +154,11 @@ RunSummary run_sequence(const RunOptions& o) {
     if (stats.is_open()) {
       char line[512];
       std::snprintf(line, sizeof(line),
-                    "%zu,%.6f,%s,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%.2f,%.2f,%ld,%ld,%ld\n", i, t,
+                    "%zu,%.6f,%s,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%.2f,%.2f,%ld,%ld,%ld,%ld,%ld\n", i, t,
                     slam::tracking_state_name(r.state), rs.total, rs.kept, rs.z, rs.q, rs.q_to_p, rs.p, rs.detections,
                     rs.mean_flow.x, rs.mean_flow.y, rs.z_threshold, rs.wait_ms, rs.detect_ms, rs.flow_ms, rs.filter_ms,
                     r.timing.total_ms, frame_score.true_positive, frame_score.false_positive,
-                    frame_score.false_negative);
+                    frame_score.false_negative, fp_z, fp_q);
       stats << line;
     }
     char detail[160];

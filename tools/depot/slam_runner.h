@@ -26,6 +26,7 @@ struct RunOptions {
   bool sync = false;
   bool quiet = false;
   std::string stats_csv;       // per-frame statistics
+  float background_depth_margin = 0.0f;  // our extension of `full` (0 = paper)
 };
 
 struct RunSummary {
