@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <memory>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -13,7 +14,11 @@
 #include <CLI/CLI.hpp>
 
 #include "common/error.h"
+#include "slam/detect/detector_config.h"
+#include "slam/detect/detector_factory.h"
+#include "slam/detect/sim_detector.h"
 #include "slam/io/settings.h"
+#include "slam/reject/rejection_filter.h"
 #include "slam/io/tum_sequence.h"
 #include "slam/system/system.h"
 #include "sim/pipeline/render_dataset.h"
@@ -44,6 +49,12 @@ int main(int argc, char** argv) {
   std::string scenario = "depot_static";
   int frames = 900;
   bool sync = false;
+  std::string mode = "orb";
+  std::string detector_type = "sim";
+  app.add_option("--mode", mode, "Rejection mode measured against plain orb in the same run")
+      ->check(CLI::IsMember({"orb", "orb+yolo", "orb+lk", "full"}));
+  app.add_option("--detector", detector_type, "sim | darknet | fastestdet")
+      ->check(CLI::IsMember({"sim", "darknet", "fastestdet"}));
   app.add_option("--dataset", dataset, "TUM folder to run (default: render --scenario first)");
   app.add_option("--scenario", scenario, "Shipped scenario to render when no dataset is given");
   app.add_option("--frames", frames, "Frames")->check(CLI::Range(10, 1000000));
@@ -70,44 +81,92 @@ int main(int argc, char** argv) {
     sequence.set_depth_factor(settings.camera.depth_factor);
     const size_t n = std::min<size_t>(frames, sequence.size());
 
-    depot::slam::System system(settings);
-    std::vector<double> total, extract, match, optimize, other;
-    double rss_start = rss_mb(), rss_early = 0;
-    size_t kf_early = 0;
-    int lost = 0;
-    cv::Mat bgr, depth;
-    for (size_t i = 0; i < n; ++i) {
-      sequence.load(i, bgr, depth);
-      auto r = system.track(bgr, depth, sequence.entry(i).rgb_timestamp);
-      lost += r.state == depot::slam::TrackingState::kLost;
-      total.push_back(r.timing.total_ms);
-      extract.push_back(r.timing.extract_ms);
-      match.push_back(r.stats.match_ms);
-      optimize.push_back(r.stats.optimize_ms);
-      other.push_back(r.timing.track_ms - r.stats.match_ms - r.stats.optimize_ms);
-      if (i == n / 10) rss_early = rss_mb(), kf_early = system.n_keyframes();
-    }
-    system.finish();
-    const double rss_end = rss_mb();
-    const size_t kfs = system.n_keyframes();
-    const double base = percentile(extract, 0.5);
-    std::printf("depot_slam_bench: %zu frames of %s, %s mapping, %d lost\n", n, dataset.c_str(),
-                sync ? "synchronous" : "threaded", lost);
-    std::printf("  %-32s %10s %10s %12s\n", "stage", "median ms", "p95 ms", "vs extract");
+    struct Measured {
+      std::vector<double> total, extract, match, optimize, other, filter, wait, detect;
+      int lost = 0;
+      double rss_start = 0, rss_early = 0, rss_end = 0;
+      size_t kf_early = 0, kfs = 0, points = 0;
+    };
+    auto measure = [&](const std::string& run_mode) {
+      Measured m;
+      std::unique_ptr<depot::slam::Detector> detector;
+      std::unique_ptr<depot::slam::RejectionFilter> filter;
+      const auto rmode = depot::slam::parse_rejection_mode(run_mode);
+      if (rmode != depot::slam::RejectionMode::kOrb) {
+        const std::string src = DEPOT_SOURCE_DIR;
+        if (depot::slam::mode_uses_detector(rmode)) {
+          if (detector_type == "sim") {
+            detector = std::make_unique<depot::slam::SimDetector>(dataset);
+          } else {
+            detector = depot::slam::make_dnn_detector(depot::slam::load_detector_config(
+                src + (detector_type == "darknet" ? "/scenes/detectors/yolo_fastest.yaml" : "/scenes/detectors/fastestdet.yaml")));
+          }
+        }
+        auto classes = depot::slam::AprioriClasses::load(
+            src + (detector_type == "sim" ? "/scenes/apriori/depot.yaml" : "/scenes/apriori/coco.yaml"));
+        filter = std::make_unique<depot::slam::RejectionFilter>(rmode, classes, detector.get());
+      }
+      depot::slam::System system(settings, filter.get());
+      m.rss_start = rss_mb();
+      cv::Mat bgr, depth;
+      for (size_t i = 0; i < n; ++i) {
+        sequence.load(i, bgr, depth);
+        auto r = system.track(bgr, depth, sequence.entry(i).rgb_timestamp);
+        m.lost += r.state == depot::slam::TrackingState::kLost;
+        m.total.push_back(r.timing.total_ms);
+        m.extract.push_back(r.timing.extract_ms);
+        m.match.push_back(r.stats.match_ms);
+        m.optimize.push_back(r.stats.optimize_ms);
+        m.other.push_back(r.timing.track_ms - r.stats.match_ms - r.stats.optimize_ms);
+        if (filter) {
+          m.filter.push_back(filter->last_stats().filter_ms);
+          m.wait.push_back(filter->last_stats().wait_ms);
+          m.detect.push_back(filter->last_stats().detect_ms);
+        }
+        if (i == n / 10) m.rss_early = rss_mb(), m.kf_early = system.n_keyframes();
+      }
+      system.finish();
+      m.rss_end = rss_mb();
+      m.kfs = system.n_keyframes();
+      m.points = system.n_map_points();
+      return m;
+    };
+    const Measured base_run = measure("orb");
+    const Measured run = mode == "orb" ? base_run : measure(mode);
+    const double base = percentile(base_run.extract, 0.5);
     auto row = [&](const char* name, const std::vector<double>& v) {
-      std::printf("  %-32s %10.2f %10.2f %11.2fx\n", name, percentile(v, 0.5), percentile(v, 0.95),
+      std::printf("  %-34s %10.2f %10.2f %11.2fx\n", name, percentile(v, 0.5), percentile(v, 0.95),
                   percentile(v, 0.5) / base);
     };
-    row("ORB extraction (baseline)", extract);
-    row("matching", match);
-    row("pose optimisation", optimize);
-    row("other tracking (local map, KF)", other);
-    row("total per frame", total);
-    std::printf("  median tracking %.1f ms per frame (target < 25 ms at 640x480)\n", percentile(total, 0.5));
+    std::printf("depot_slam_bench: %zu frames of %s, %s mapping, %d lost\n", n, dataset.c_str(),
+                sync ? "synchronous" : "threaded", base_run.lost);
+    std::printf("  %-34s %10s %10s %12s\n", "stage (mode orb)", "median ms", "p95 ms", "vs extract");
+    row("ORB extraction (baseline)", base_run.extract);
+    row("matching", base_run.match);
+    row("pose optimisation", base_run.optimize);
+    row("other tracking (local map, KF)", base_run.other);
+    row("total per frame", base_run.total);
+    std::printf("  median tracking %.1f ms per frame (target < 25 ms at 640x480)\n", percentile(base_run.total, 0.5));
     std::printf("  memory: RSS %.1f MB at start, %.1f MB after %zu frames (%zu keyframes), %.1f MB at the end (%zu "
                 "keyframes, %zu map points): %.3f MB per keyframe after the first tenth\n",
-                rss_start, rss_early, n / 10 + 1, kf_early, rss_end, kfs, system.n_map_points(),
-                kfs > kf_early ? (rss_end - rss_early) / static_cast<double>(kfs - kf_early) : 0.0);
+                base_run.rss_start, base_run.rss_early, n / 10 + 1, base_run.kf_early, base_run.rss_end, base_run.kfs,
+                base_run.points,
+                base_run.kfs > base_run.kf_early
+                    ? (base_run.rss_end - base_run.rss_early) / static_cast<double>(base_run.kfs - base_run.kf_early)
+                    : 0.0);
+    if (mode != "orb") {
+      std::printf("  mode %s with the %s detector (%d lost):\n", mode.c_str(), detector_type.c_str(), run.lost);
+      row("rejection stage (after detection)", run.filter);
+      row("detector (own thread)", run.detect);
+      row("tracking waited for the detector", run.wait);
+      row("total per frame", run.total);
+      const double det = percentile(run.detect, 0.5), wait = percentile(run.wait, 0.5);
+      std::printf("  the detection thread hides %.0f %% of the detector's time; the rejection stage adds %.1f %% to "
+                  "plain tracking time (%.2f of %.2f ms)\n",
+                  det > 0 ? 100.0 * (1.0 - wait / det) : 100.0,
+                  100.0 * percentile(run.filter, 0.5) / percentile(base_run.total, 0.5), percentile(run.filter, 0.5),
+                  percentile(base_run.total, 0.5));
+    }
   } catch (const depot::Error& e) {
     std::fprintf(stderr, "depot_slam_bench: error: %s\n", e.what());
     if (!rendered.empty()) fs::remove_all(rendered);
