@@ -12,6 +12,7 @@
 #include "common/rng.h"
 #include "common/tum_io.h"
 #include "sim/dataset/boxes.h"
+#include "sim/dataset/png_writer.h"
 #include "sim/sensor/kinect_model.h"
 
 namespace fs = std::filesystem;
@@ -28,14 +29,8 @@ namespace {
 
 const size_t kMaxQueued = 6;
 
-// Noisy colour compresses little beyond entropy coding, so Huffman-only is
-// both faster and smaller there; depth and labels keep LZ matching.
-void write_png(const std::string& path, const cv::Mat& img, int compression, size_t& bytes) {
-  std::vector<uchar> buf;
-  std::vector<int> params{cv::IMWRITE_PNG_COMPRESSION, compression};
-  if (img.type() == CV_8UC3)
-    params.insert(params.end(), {cv::IMWRITE_PNG_STRATEGY, cv::IMWRITE_PNG_STRATEGY_HUFFMAN_ONLY});
-  if (!cv::imencode(".png", img, buf, params)) fail(path, "PNG encoding failed");
+void write_png(const std::string& path, const cv::Mat& img, PngKind kind, int compression, size_t& bytes) {
+  const std::vector<unsigned char> buf = encode_png(img, kind, compression);
   std::ofstream out(path, std::ios::binary);
   out.write(reinterpret_cast<const char*>(buf.data()), static_cast<std::streamsize>(buf.size()));
   if (!out) fail(path, "write failed (disk full?)");
@@ -171,11 +166,11 @@ void DatasetWriter::write_job(Job& job, WriterTimings& timings) {
   cv::Mat depth16 = depth_to_u16(depth, scenario_.camera.depth_factor);
   auto t1 = std::chrono::steady_clock::now();
   const fs::path root = dir_->path();
-  write_png((root / "rgb" / (job.stamp_rgb + ".png")).string(), job.frame.bgr,
+  write_png((root / "rgb" / (job.stamp_rgb + ".png")).string(), job.frame.bgr, PngKind::kColor,
             options_.png_compression, timings.bytes);
-  write_png((root / "depth" / (job.stamp_depth + ".png")).string(), depth16,
+  write_png((root / "depth" / (job.stamp_depth + ".png")).string(), depth16, PngKind::kDepth,
             options_.png_compression, timings.bytes);
-  write_png((root / "labels" / (job.stamp_rgb + ".png")).string(), job.frame.instance,
+  write_png((root / "labels" / (job.stamp_rgb + ".png")).string(), job.frame.instance, PngKind::kLabels,
             options_.png_compression, timings.bytes);
   auto t2 = std::chrono::steady_clock::now();
   timings.sensor_ms += std::chrono::duration<double, std::milli>(t1 - t0).count();

@@ -15,6 +15,7 @@
 
 #include "common/error.h"
 #include "common/rng.h"
+#include "sim/dataset/png_writer.h"
 #include "sim/pipeline/render_dataset.h"
 #include "sim/scenario/scenario_loader.h"
 #include "sim/sensor/kinect_model.h"
@@ -59,7 +60,6 @@ int main(int argc, char** argv) {
       depot::sim::FrameTruth truth;
       depot::sim::SequenceTimings t;
       std::vector<uchar> buf;
-      const std::vector<int> params{cv::IMWRITE_PNG_COMPRESSION, 1};
       while (sequence.next(frame, truth, &t)) {
         physics += t.physics_ms;
         render += t.render.color_depth_ms;
@@ -75,9 +75,9 @@ int main(int argc, char** argv) {
                      {cv::IMWRITE_PNG_COMPRESSION, 1, cv::IMWRITE_PNG_STRATEGY,
                       cv::IMWRITE_PNG_STRATEGY_HUFFMAN_ONLY});
         auto t2 = Clock::now();
-        cv::imencode(".png", depth16, buf, params);
+        buf = depot::sim::encode_png(depth16, depot::sim::PngKind::kDepth);
         auto t3 = Clock::now();
-        cv::imencode(".png", frame.instance, buf, params);
+        buf = depot::sim::encode_png(frame.instance, depot::sim::PngKind::kLabels);
         auto t4 = Clock::now();
         sensor += ms(t0, t1), png_rgb += ms(t1, t2), png_depth += ms(t2, t3),
             png_labels += ms(t3, t4);
@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
     row("render instance labels", labels / n, base);
     row("convert (flip, depth, ids)", convert / n, base);
     row("sensor model", sensor / n, base);
-    row("PNG encode RGB (Huffman only)", png_rgb / n, base);
+    row("PNG encode RGB", png_rgb / n, base);
     row("PNG encode depth", png_depth / n, base);
     row("PNG encode labels", png_labels / n, base);
     const double serial =
