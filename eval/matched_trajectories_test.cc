@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "common/error.h"
+#include "common/testing/error_of.h"
 #include "eval/test_trajectories.h"
 
 namespace depot::eval {
@@ -10,17 +11,6 @@ namespace {
 
 using testing::helix_trajectory;
 using testing::write_scratch_file;
-
-// The message of the depot::Error that `f` throws ("" when it does not).
-template <typename F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(MatchedTrajectories, KeepsOnlyPosesWithPartners) {
   const auto gt = helix_trajectory(50, 100.0);  // 0.5 s at 100 Hz

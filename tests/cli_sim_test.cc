@@ -15,17 +15,6 @@ namespace fs = std::filesystem;
 namespace depot::test {
 namespace {
 
-struct Result {
-  int code;
-  std::string output;
-};
-
-Result depot(const std::string& args) {
-  Result r;
-  r.code = run_command(depot_binary() + " " + args, &r.output);
-  return r;
-}
-
 std::string write_yaml(const std::string& tag, const std::string& text) {
   std::string path = temp_path(tag) + ".yaml";
   std::ofstream(path) << text;
@@ -40,7 +29,7 @@ std::string scene_lines() {
 // One line, starting "depot: error:", containing `needle`; no output left.
 void expect_clean_failure(const std::string& args, const std::string& out,
                           const std::string& needle) {
-  Result r = depot(args + " -o " + out + " -q");
+  DepotResult r = depot(args + " -o " + out + " -q");
   EXPECT_NE(r.code, 0) << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   EXPECT_EQ(r.output.rfind("depot: error: ", 0), 0u) << r.output;
@@ -81,7 +70,7 @@ TEST(CliSim, MissingAssetFile) {
 TEST(CliSim, UnwritableOutput) {
   std::string file = temp_path("plainfile");
   std::ofstream(file) << "x";
-  Result r = depot("sim render depot_static --frames 2 --width 64 -q -o " + file + "/dataset");
+  DepotResult r = depot("sim render depot_static --frames 2 --width 64 -q -o " + file + "/dataset");
   EXPECT_NE(r.code, 0);
   EXPECT_EQ(r.output.rfind("depot: error: ", 0), 0u) << r.output;
   EXPECT_NE(r.output.find(file), std::string::npos) << r.output;
@@ -93,7 +82,7 @@ TEST(CliSim, OutOfRangeParameter) {
 }
 
 TEST(CliSim, ListsShippedScenarios) {
-  Result r = depot("sim list");
+  DepotResult r = depot("sim list");
   EXPECT_EQ(r.code, 0) << r.output;
   for (const char* name : {"depot_walking_xyz", "depot_walking_halfsphere", "depot_walking_rpy",
                            "depot_walking_static", "depot_sitting_xyz", "depot_sitting_static",
@@ -103,10 +92,10 @@ TEST(CliSim, ListsShippedScenarios) {
 
 TEST(CliSim, EglRendersTheSameBytesAsOsMesa) {
   std::string a = temp_path("osmesa"), b = temp_path("egl");
-  Result ra =
+  DepotResult ra =
       depot("sim render depot_walking_xyz --frames 3 --width 160 --ideal -q --gl osmesa -o " + a);
   ASSERT_EQ(ra.code, 0) << ra.output;
-  Result rb =
+  DepotResult rb =
       depot("sim render depot_walking_xyz --frames 3 --width 160 --ideal -q --gl egl -o " + b);
   ASSERT_EQ(rb.code, 0) << rb.output;
   EXPECT_EQ(compare_trees(a, b), "");
@@ -116,12 +105,12 @@ TEST(CliSim, PreviewWritesAContactSheet) {
   std::string data = temp_path("preview_data");
   ASSERT_EQ(depot("sim render depot_sitting_static --frames 4 --width 160 -q -o " + data).code, 0);
   std::string sheet = temp_path("sheet") + ".png";
-  Result r = depot("sim preview " + data + " -o " + sheet + " --rows 2");
+  DepotResult r = depot("sim preview " + data + " -o " + sheet + " --rows 2");
   ASSERT_EQ(r.code, 0) << r.output;
   cv::Mat img = cv::imread(sheet);
   ASSERT_FALSE(img.empty());
   EXPECT_GE(img.cols, 3 * 320 - 1);  // RGB | depth | labels
-  Result bad = depot("sim preview /nonexistent -o " + sheet);
+  DepotResult bad = depot("sim preview /nonexistent -o " + sheet);
   EXPECT_NE(bad.code, 0);
 }
 

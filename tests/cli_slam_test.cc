@@ -14,17 +14,6 @@ namespace fs = std::filesystem;
 namespace depot::test {
 namespace {
 
-struct Result {
-  int code;
-  std::string output;
-};
-
-Result depot(const std::string& args) {
-  Result r;
-  r.code = run_command(depot_binary() + " " + args, &r.output);
-  return r;
-}
-
 // A small valid dataset to break in different ways.
 std::string small_dataset() {
   std::string src = render_small({"depot_static", 6, 160, false});
@@ -35,7 +24,7 @@ std::string small_dataset() {
 
 void expect_error(const std::string& dataset, const std::string& needle) {
   const std::string out = temp_path("traj") + ".txt";
-  Result r = depot("slam run " + dataset + " -o " + out + " -q");
+  DepotResult r = depot("slam run " + dataset + " -o " + out + " -q");
   EXPECT_NE(r.code, 0) << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   EXPECT_EQ(r.output.rfind("depot: error: ", 0), 0u) << r.output;
@@ -90,10 +79,10 @@ TEST(CliSlam, MissingFolder) { expect_error("/nonexistent/dataset", "not found")
 TEST(CliSlam, RunsAndWritesATumTrajectory) {
   std::string d = render_small({"depot_static", 30, 320, false});
   const std::string out = temp_path("traj") + ".txt";
-  Result r = depot("slam run " + d + " -o " + out + " --sync -q");
+  DepotResult r = depot("slam run " + d + " -o " + out + " --sync -q");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("tracked 30 frames (0 lost"), std::string::npos) << r.output;
-  Result ate = depot("eval ate " + d + "/groundtruth.txt " + out);
+  DepotResult ate = depot("eval ate " + d + "/groundtruth.txt " + out);
   EXPECT_EQ(ate.code, 0) << ate.output;
   EXPECT_NE(ate.output.find("rmse"), std::string::npos);
 }

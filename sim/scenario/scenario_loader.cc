@@ -8,6 +8,7 @@
 #include <set>
 
 #include "common/error.h"
+#include "common/yaml_file.h"
 
 namespace fs = std::filesystem;
 
@@ -240,14 +241,7 @@ ActorSpec read_actor(const Fields& f, size_t index, uint64_t seed) {
 }  // namespace
 
 Scenario load_scenario(const std::string& path) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    fail(path, "cannot open scenario file");
-  } catch (const YAML::Exception& e) {
-    fail(path + ":" + std::to_string(e.mark.line + 1), "YAML syntax error: " + e.msg);
-  }
+  YAML::Node root = load_yaml_file(path, "scenario file");
   if (!root || root.IsNull()) fail(path, "empty scenario file");
   Fields top(root, path, "scenario");
   top.allow_only({"name", "description", "scene", "classes", "seed", "frames", "shadows",

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "common/error.h"
+#include "common/yaml_file.h"
 
 namespace depot::sim {
 namespace {
@@ -30,14 +31,7 @@ T read(const std::string& path, const YAML::Node& n, const char* key, T fallback
 }  // namespace
 
 SceneLayout load_scene_layout(const std::string& path) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    fail(path, "cannot open scene layout");
-  } catch (const YAML::Exception& e) {
-    fail(path + ":" + std::to_string(e.mark.line + 1), "YAML syntax error: " + e.msg);
-  }
+  YAML::Node root = load_yaml_file(path, "scene layout");
   SceneLayout layout;
   layout.path = path;
   YAML::Node hall = root["hall"];

@@ -3,10 +3,8 @@
 #include <fstream>
 
 #include "common/error.h"
-#include "slam/detect/class_names.h"
 #include "slam/detect/dnn_model.h"
 #include "slam/detect/letterbox.h"
-#include "slam/detect/nms.h"
 
 namespace depot::slam {
 
@@ -63,39 +61,37 @@ cv::Size darknet_cfg_input_size(const std::string& cfg) {
   return size;
 }
 
-DarknetDetector::DarknetDetector(const DetectorConfig& config) : config_(config) {
-  params_.model = config.model;
-  params_.names_path = config.names;
-  params_.confidence = config.confidence;
-  require_file(config.model, "model file");
+DarknetDetector::DarknetDetector(const DetectorConfig& config) : DnnDetector("darknet", config) {
   require_file(config.config, "Darknet cfg file");
+  cv::Size input;
   if (config.input_width > 0) {
-    input_ = cv::Size(config.input_width, config.input_height);
+    input = cv::Size(config.input_width, config.input_height);
   } else {
-    input_ = darknet_cfg_input_size(config.config);
-    if (input_.width <= 0 || input_.height <= 0)
+    input = darknet_cfg_input_size(config.config);
+    if (input.width <= 0 || input.height <= 0)
       fail(config.config, "no [net] width/height: give input_width and input_height");
   }
-  params_.names = load_class_names(config.names);
-  params_.wanted = wanted_classes(params_.names, config.classes, config.names);
-  net_ = load_darknet_net(config.config, config.model);
-  // Warm-up on a grey frame: checks the outputs and class count now.
-  const cv::Mat grey(input_, CV_8UC3, cv::Scalar::all(114));
-  const cv::Mat blob = cv::dnn::blobFromImage(grey, 1 / 255.0, input_, cv::Scalar(), true, false);
-  const std::vector<cv::Mat> outs = run_net(net_, blob, config.model);
-  for (const cv::Mat& out : outs) require_finite(out, config.model);
-  decode_darknet(outs, params_, input_);
+  load(input);
 }
 
-std::vector<Detection> DarknetDetector::detect(const cv::Mat& bgr, double, long) {
-  require_bgr(bgr, name());
-  const cv::Mat blob = cv::dnn::blobFromImage(bgr, 1 / 255.0, input_, cv::Scalar(), true, false);
-  const std::vector<cv::Mat> outs = run_net(net_, blob, config_.model);
-  return non_max_suppression(decode_darknet(outs, params_, bgr.size()), config_.nms);
+cv::dnn::Net DarknetDetector::load_net() const {
+  return load_darknet_net(config().config, config().model);
 }
 
-std::string DarknetDetector::name() const {
-  return "darknet (" + config_.model + ")";
+DnnDetector::Input DarknetDetector::preprocess(const cv::Mat& bgr) const {
+  Input in;
+  in.blob = cv::dnn::blobFromImage(bgr, 1 / 255.0, input(), cv::Scalar(), true, false);
+  in.transform.source = bgr.size();
+  in.transform.target = input();
+  return in;
+}
+
+std::vector<Detection> DarknetDetector::decode(const std::vector<cv::Mat>& outputs,
+                                               const LetterboxTransform& transform,
+                                               bool check_finite) const {
+  if (check_finite)
+    for (const cv::Mat& out : outputs) require_finite(out, config().model);
+  return decode_darknet(outputs, params(), transform.source);
 }
 
 }  // namespace depot::slam

@@ -10,6 +10,7 @@
 #include "slam/detect/decode_params.h"
 #include "slam/detect/detection.h"
 #include "slam/detect/detector_config.h"
+#include "slam/detect/dnn_detector.h"
 
 namespace depot::slam {
 
@@ -26,22 +27,19 @@ std::vector<Detection> decode_darknet(const std::vector<cv::Mat>& outputs, const
 // The [net] width x height of a Darknet cfg (0x0 if it gives none).
 cv::Size darknet_cfg_input_size(const std::string& cfg);
 
-class DarknetDetector : public Detector {
+class DarknetDetector final : public DnnDetector {
  public:
   // Loads config.config (cfg), config.model (weights) and config.names; input
   // size default: the cfg's [net] width/height. Runs one warm-up pass to check
   // the outputs against the class list. Throws depot::Error naming the file.
   explicit DarknetDetector(const DetectorConfig& config);
 
-  std::vector<Detection> detect(const cv::Mat& bgr, double timestamp, long frame_index) override;
-  std::string name() const override;
-  std::vector<std::string> class_names() const override { return params_.names; }
-
  private:
-  DetectorConfig config_;
-  DecodeParams params_;
-  cv::Size input_;
-  cv::dnn::Net net_;
+  cv::dnn::Net load_net() const override;
+  Input preprocess(const cv::Mat& bgr) const override;
+  std::vector<Detection> decode(const std::vector<cv::Mat>& outputs,
+                                const LetterboxTransform& transform,
+                                bool check_finite) const override;
 };
 
 }  // namespace depot::slam

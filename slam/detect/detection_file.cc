@@ -13,6 +13,7 @@
 
 #include "common/error.h"
 #include "common/tum_io.h"
+#include "slam/detect/text_records.h"
 
 namespace depot::slam {
 namespace {
@@ -82,17 +83,7 @@ std::vector<DetectionFrame> read_detections_file(const std::string& path,
   if (!in) fail(path, "cannot open file");
   // Frames keyed by the timestamp in microseconds, so equal stamps group.
   std::map<long long, DetectionFrame> frames;
-  std::string text;
-  int line_no = 0;
-  while (std::getline(in, text)) {
-    ++line_no;
-    if (!text.empty() && text.back() == '\r') text.pop_back();
-    const auto first = text.find_first_not_of(" \t");
-    if (first == std::string::npos || text[first] == '#') continue;
-    const std::string where = path + ":" + std::to_string(line_no);
-    std::istringstream ss(text);
-    std::vector<std::string> f;
-    for (std::string s; ss >> s;) f.push_back(s);
+  for_each_record(in, path, [&](const std::string& where, const std::vector<std::string>& f) {
     if (f.size() != 7)
       fail(where, "expected 7 fields (timestamp class_name confidence x1 y1 x2 y2), found " +
                       std::to_string(f.size()));
@@ -116,7 +107,7 @@ std::vector<DetectionFrame> read_detections_file(const std::string& path,
     DetectionFrame& frame = frames[std::llround(t * 1e6)];
     frame.timestamp = t;
     frame.detections.push_back(std::move(d));
-  }
+  });
   if (in.bad()) fail(path, "read error");
   std::vector<DetectionFrame> out;
   out.reserve(frames.size());

@@ -9,19 +9,10 @@
 #include <gtest/gtest.h>
 
 #include "common/error.h"
+#include "common/testing/error_of.h"
 
 namespace depot::slam {
 namespace {
-
-template <typename F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 class DetectionFileTest : public ::testing::Test {
  protected:

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "common/error.h"
+#include "common/yaml_file.h"
 
 namespace depot::slam {
 namespace {
@@ -58,14 +59,7 @@ const std::vector<std::string>& dnn_detector_types() {
 }
 
 DetectorConfig load_detector_config(const std::string& yaml_path) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(yaml_path);
-  } catch (const YAML::BadFile&) {
-    fail(yaml_path, "cannot open detector config");
-  } catch (const YAML::Exception& e) {
-    fail(yaml_path + ":" + std::to_string(e.mark.line + 1), "YAML syntax error: " + e.msg);
-  }
+  YAML::Node root = load_yaml_file(yaml_path, "detector config");
   if (!root.IsMap()) fail(yaml_path, "detector config must be a YAML map");
 
   static const std::vector<std::string> known{"type",       "model",       "config",

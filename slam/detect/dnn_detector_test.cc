@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/error.h"
+#include "common/testing/error_of.h"
 #include "slam/detect/class_names.h"
 #include "slam/detect/detector_config.h"
 #include "slam/detect/detector_factory.h"
@@ -40,12 +41,7 @@ DetectorConfig fastestdet() {
 // The message of the depot::Error `f` throws ("(no error)" if none).
 template <typename F>
 std::string error_of(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return depot::error_of(f, "(no error)");
 }
 
 bool contains(const std::string& s, const std::string& part) {

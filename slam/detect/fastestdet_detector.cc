@@ -4,10 +4,8 @@
 #include <cmath>
 
 #include "common/error.h"
-#include "slam/detect/class_names.h"
 #include "slam/detect/dnn_model.h"
 #include "slam/detect/letterbox.h"
-#include "slam/detect/nms.h"
 
 namespace depot::slam {
 namespace {
@@ -62,34 +60,29 @@ std::vector<Detection> decode_fastestdet(const cv::Mat& output, const DecodePara
   return dets;
 }
 
-FastestDetDetector::FastestDetDetector(const DetectorConfig& config) : config_(config) {
-  input_ = config.input_width > 0 ? cv::Size(config.input_width, config.input_height)
-                                  : cv::Size(352, 352);
-  params_.model = config.model;
-  params_.names_path = config.names;
-  params_.confidence = config.confidence;
-  require_file(config.model, "model file");
-  params_.names = load_class_names(config.names);
-  params_.wanted = wanted_classes(params_.names, config.classes, config.names);
-  net_ = load_onnx_net(config.model);
-  // Warm-up on a grey frame: checks the output layout and class count now.
-  const cv::Mat grey(input_, CV_8UC3, cv::Scalar::all(114));
-  const cv::Mat blob = cv::dnn::blobFromImage(grey, 1 / 255.0, input_, cv::Scalar(), false, false);
-  const std::vector<cv::Mat> outs = run_net(net_, blob, config.model);
-  require_finite(outs.front(), config.model);
-  decode_fastestdet(outs.front(), params_, input_);
+FastestDetDetector::FastestDetDetector(const DetectorConfig& config)
+    : DnnDetector("fastestdet", config) {
+  load(configured_input(config, cv::Size(352, 352)));
 }
 
-std::vector<Detection> FastestDetDetector::detect(const cv::Mat& bgr, double, long) {
-  require_bgr(bgr, name());
+cv::dnn::Net FastestDetDetector::load_net() const {
+  return load_onnx_net(config().model);
+}
+
+DnnDetector::Input FastestDetDetector::preprocess(const cv::Mat& bgr) const {
   // FastestDet takes BGR (its examples feed OpenCV images unswapped).
-  const cv::Mat blob = cv::dnn::blobFromImage(bgr, 1 / 255.0, input_, cv::Scalar(), false, false);
-  const std::vector<cv::Mat> outs = run_net(net_, blob, config_.model);
-  return non_max_suppression(decode_fastestdet(outs.front(), params_, bgr.size()), config_.nms);
+  Input in;
+  in.blob = cv::dnn::blobFromImage(bgr, 1 / 255.0, input(), cv::Scalar(), false, false);
+  in.transform.source = bgr.size();
+  in.transform.target = input();
+  return in;
 }
 
-std::string FastestDetDetector::name() const {
-  return "fastestdet (" + config_.model + ")";
+std::vector<Detection> FastestDetDetector::decode(const std::vector<cv::Mat>& outputs,
+                                                  const LetterboxTransform& transform,
+                                                  bool check_finite) const {
+  if (check_finite) require_finite(outputs.front(), config().model);
+  return decode_fastestdet(outputs.front(), params(), transform.source);
 }
 
 }  // namespace depot::slam

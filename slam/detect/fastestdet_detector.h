@@ -9,6 +9,7 @@
 #include "slam/detect/decode_params.h"
 #include "slam/detect/detection.h"
 #include "slam/detect/detector_config.h"
+#include "slam/detect/dnn_detector.h"
 
 namespace depot::slam {
 
@@ -26,22 +27,19 @@ namespace depot::slam {
 std::vector<Detection> decode_fastestdet(const cv::Mat& output, const DecodeParams& p,
                                          cv::Size image);
 
-class FastestDetDetector : public Detector {
+class FastestDetDetector final : public DnnDetector {
  public:
   // Loads config.model (ONNX) and config.names; input size default 352x352.
   // Runs one warm-up pass to check the output against the class list.
   // Throws depot::Error naming the offending file.
   explicit FastestDetDetector(const DetectorConfig& config);
 
-  std::vector<Detection> detect(const cv::Mat& bgr, double timestamp, long frame_index) override;
-  std::string name() const override;
-  std::vector<std::string> class_names() const override { return params_.names; }
-
  private:
-  DetectorConfig config_;
-  DecodeParams params_;
-  cv::Size input_;
-  cv::dnn::Net net_;
+  cv::dnn::Net load_net() const override;
+  Input preprocess(const cv::Mat& bgr) const override;
+  std::vector<Detection> decode(const std::vector<cv::Mat>& outputs,
+                                const LetterboxTransform& transform,
+                                bool check_finite) const override;
 };
 
 }  // namespace depot::slam

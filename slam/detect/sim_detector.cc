@@ -14,7 +14,9 @@
 #include "common/error.h"
 #include "common/rng.h"
 #include "common/tum_io.h"
+#include "common/yaml_file.h"
 #include "slam/detect/class_names.h"
+#include "slam/detect/text_records.h"
 
 namespace depot::slam {
 namespace {
@@ -54,14 +56,7 @@ long parse_int(const std::string& where, const std::string& s, const char* what)
 }
 
 cv::Size read_image_size(const std::string& path) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    fail(path, "cannot open file (the dataset's camera calibration)");
-  } catch (const YAML::Exception& e) {
-    fail(path + ":" + std::to_string(e.mark.line + 1), "YAML syntax error: " + e.msg);
-  }
+  YAML::Node root = load_yaml_file(path, "file (the dataset's camera calibration)");
   const YAML::Node cam = root["camera"];
   if (!cam || !cam["width"] || !cam["height"]) fail(path, "no camera: width/height");
   cv::Size size;
@@ -128,17 +123,7 @@ SimDetector::SimDetector(const std::string& dataset_dir, const SimDetectorConfig
   const std::string boxes_path = join(dir_, "boxes.txt");
   std::ifstream in(boxes_path);
   if (!in) fail(boxes_path, "cannot open file (the ground-truth boxes)");
-  std::string text;
-  int line_no = 0;
-  while (std::getline(in, text)) {
-    ++line_no;
-    if (!text.empty() && text.back() == '\r') text.pop_back();
-    const auto first = text.find_first_not_of(" \t");
-    if (first == std::string::npos || text[first] == '#') continue;
-    const std::string where = boxes_path + ":" + std::to_string(line_no);
-    std::istringstream ss(text);
-    std::vector<std::string> f;
-    for (std::string s; ss >> s;) f.push_back(s);
+  for_each_record(in, boxes_path, [&](const std::string& where, const std::vector<std::string>& f) {
     if (f.size() != 9)
       fail(where,
            "expected 9 fields (timestamp id class x1 y1 x2 y2 visible_pixels moving), found " +
@@ -172,7 +157,7 @@ SimDetector::SimDetector(const std::string& dataset_dir, const SimDetectorConfig
       fail(where,
            "visible_pixels " + f[7] + " is not in [1, box area " + std::to_string(b.area()) + "]");
     truth_[frame].push_back(std::move(b));
-  }
+  });
   if (in.bad()) fail(boxes_path, "read error");
 
   // Per class: the fill of an unoccluded object, the box sizes, the partners.

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/yaml_file.h"
 
 namespace depot::slam {
 namespace {
@@ -145,14 +146,7 @@ SimDetectorConfig load_sim_detector_config(const YAML::Node& node, const std::st
 
 SimDetectorConfig load_sim_detector_config_file(const std::string& path,
                                                 const SimDetectorConfig& defaults) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    fail(path, "cannot open the simulated detector config");
-  } catch (const YAML::Exception& e) {
-    fail(path + ":" + std::to_string(e.mark.line + 1), "YAML syntax error: " + e.msg);
-  }
+  YAML::Node root = load_yaml_file(path, "the simulated detector config");
   return load_sim_detector_config(root, path, defaults);
 }
 

@@ -12,20 +12,10 @@
 #include <gtest/gtest.h>
 
 #include "common/error.h"
+#include "common/testing/error_of.h"
 
 namespace depot::slam {
 namespace {
-
-// The message of the depot::Error that `f` throws ("" if none).
-template <typename F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 SimDetectorConfig from(const std::string& yaml) {
   return load_sim_detector_config(YAML::Load(yaml), "cfg.yaml");

@@ -20,6 +20,7 @@
 
 #include "common/error.h"
 #include "common/rng.h"
+#include "common/testing/error_of.h"
 #include "slam/detect/detection_file.h"
 
 namespace depot::slam {
@@ -29,16 +30,6 @@ namespace fs = std::filesystem;
 
 constexpr int kFrames = 20;
 constexpr int kSeeds = 400;  // repetitions of the 20 frames for the statistics
-
-template <typename F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 // Renders `scenario` (20 frames, `width` px wide) with the depot program into
 // a new folder under `root` and returns the dataset folder ("" on failure).

@@ -1,9 +1,7 @@
 #include "slam/detect/yolov5_detector.h"
 
 #include "common/error.h"
-#include "slam/detect/class_names.h"
 #include "slam/detect/dnn_model.h"
-#include "slam/detect/nms.h"
 
 namespace depot::slam {
 namespace {
@@ -52,38 +50,26 @@ std::vector<Detection> decode_yolov5(const cv::Mat& output, const DecodeParams& 
   return dets;
 }
 
-Yolov5Detector::Yolov5Detector(const DetectorConfig& config) : config_(config) {
-  input_ = config.input_width > 0 ? cv::Size(config.input_width, config.input_height)
-                                  : cv::Size(640, 640);
-  params_.model = config.model;
-  params_.names_path = config.names;
-  params_.confidence = config.confidence;
-  require_file(config.model, "model file");
-  params_.names = load_class_names(config.names);
-  params_.wanted = wanted_classes(params_.names, config.classes, config.names);
-  net_ = load_onnx_net(config.model);
-  // Warm-up on a grey frame: checks the output layout and class count now
-  // rather than on the first real frame.
-  const cv::Mat grey(input_, CV_8UC3, cv::Scalar::all(114));
-  const cv::Mat blob = cv::dnn::blobFromImage(grey, 1 / 255.0, input_, cv::Scalar(), true, false);
-  const std::vector<cv::Mat> outs = run_net(net_, blob, config.model);
-  const cv::Mat& out = detection_output(outs, config.model);
-  require_finite(out, config.model);
-  decode_yolov5(out, params_, letterbox(grey, input_).transform);
+Yolov5Detector::Yolov5Detector(const DetectorConfig& config) : DnnDetector("yolov5", config) {
+  load(configured_input(config, cv::Size(640, 640)));
 }
 
-std::vector<Detection> Yolov5Detector::detect(const cv::Mat& bgr, double, long) {
-  require_bgr(bgr, name());
-  const Letterboxed lb = letterbox(bgr, input_);
-  const cv::Mat blob =
-      cv::dnn::blobFromImage(lb.image, 1 / 255.0, input_, cv::Scalar(), true, false);
-  const std::vector<cv::Mat> outs = run_net(net_, blob, config_.model);
-  return non_max_suppression(
-      decode_yolov5(detection_output(outs, config_.model), params_, lb.transform), config_.nms);
+cv::dnn::Net Yolov5Detector::load_net() const {
+  return load_onnx_net(config().model);
 }
 
-std::string Yolov5Detector::name() const {
-  return "yolov5 (" + config_.model + ")";
+DnnDetector::Input Yolov5Detector::preprocess(const cv::Mat& bgr) const {
+  const Letterboxed lb = letterbox(bgr, input());
+  return {cv::dnn::blobFromImage(lb.image, 1 / 255.0, input(), cv::Scalar(), true, false),
+          lb.transform};
+}
+
+std::vector<Detection> Yolov5Detector::decode(const std::vector<cv::Mat>& outputs,
+                                              const LetterboxTransform& transform,
+                                              bool check_finite) const {
+  const cv::Mat& out = detection_output(outputs, config().model);
+  if (check_finite) require_finite(out, config().model);
+  return decode_yolov5(out, params(), transform);
 }
 
 }  // namespace depot::slam

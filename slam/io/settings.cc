@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "common/error.h"
+#include "common/yaml_file.h"
 
 namespace depot::slam {
 namespace {
@@ -28,14 +29,7 @@ T read(const YAML::Node& n, const char* key, T fallback, const std::string& path
 }  // namespace
 
 SlamSettings load_settings(const std::string& path, const SlamSettings& defaults) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    fail(path, "cannot open settings file");
-  } catch (const YAML::Exception& e) {
-    fail(path + ":" + std::to_string(e.mark.line + 1), "YAML syntax error: " + e.msg);
-  }
+  YAML::Node root = load_yaml_file(path, "settings file");
   if (!root.IsMap()) fail(path, "settings must be a YAML map");
   SlamSettings s = defaults;
   const YAML::Node cam = root["camera"];

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "common/error.h"
+#include "common/yaml_file.h"
 
 namespace depot::slam {
 
@@ -10,14 +11,7 @@ AprioriClasses::AprioriClasses(std::set<std::string> dynamic, std::set<std::stri
     : dynamic_(std::move(dynamic)), potential_(std::move(potentially_dynamic)) {}
 
 AprioriClasses AprioriClasses::load(const std::string& path) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    fail(path, "cannot open class table");
-  } catch (const YAML::Exception& e) {
-    fail(path + ":" + std::to_string(e.mark.line + 1), "YAML syntax error: " + e.msg);
-  }
+  YAML::Node root = load_yaml_file(path, "class table");
   if (!root.IsMap()) fail(path, "class table must be a map with 'dynamic' and 'potentially_dynamic' lists");
   AprioriClasses table;
   for (const auto& kv : root) {

@@ -17,6 +17,12 @@ std::string depot_binary() {
   return std::string(DEPOT_BINARY_DIR) + "/tools/depot/depot";
 }
 
+DepotResult depot(const std::string& args) {
+  DepotResult r;
+  r.code = run_command(depot_binary() + " " + args, &r.output);
+  return r;
+}
+
 std::string render_small(const SmallRender& r) {
   sim::Scenario scenario = sim::load_scenario(scenario_path(r.scenario));
   sim::RenderRequest request;

@@ -29,4 +29,13 @@ std::string render_small(const SmallRender& request);
 std::string scenario_path(const std::string& name);
 std::string depot_binary();
 
+// The exit code and the combined stdout/stderr of one `depot` run.
+struct DepotResult {
+  int code;
+  std::string output;
+};
+
+// Runs the built `depot` program with `args` (shell words after "depot").
+DepotResult depot(const std::string& args);
+
 }  // namespace depot::test
