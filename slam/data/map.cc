@@ -16,4 +16,11 @@ MapPoint* Map::create_map_point(const Eigen::Vector3d& position, KeyFrame* refer
   return mp;
 }
 
+void Map::clear() {
+  for (MapPoint* mp : map_points_) mp->bad = true;
+  for (KeyFrame* kf : keyframes_) kf->bad = true;
+  map_points_.clear();
+  keyframes_.clear();
+}
+
 }  // namespace depot::slam

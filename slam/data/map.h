@@ -30,6 +30,10 @@ class Map {
   size_t n_map_points() const { return map_points_.size(); }
   KeyFrame* first_keyframe() const { return keyframes_.empty() ? nullptr : *keyframes_.begin(); }
 
+  // Forgets every keyframe and point (they turn bad; memory stays, so old
+  // pointers remain valid). Used when tracking is lost right after start.
+  void clear();
+
   std::mutex& mutex() { return mutex_; }
   // All keyframes ever created (for the trajectory, bad ones included).
   const std::vector<std::unique_ptr<KeyFrame>>& all_keyframes() const { return kf_storage_; }

@@ -52,6 +52,21 @@ void LocalMapper::run_pending() {
   }
 }
 
+void LocalMapper::reset() {
+  if (!threaded_) {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    queue_.clear();
+  }
+  while (!idle()) {
+    {
+      std::lock_guard<std::mutex> lock(queue_mutex_);
+      queue_.clear();
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  recent_points_.clear();
+}
+
 void LocalMapper::stop() {
   if (!threaded_ || !thread_.joinable()) return;
   {

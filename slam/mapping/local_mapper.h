@@ -36,6 +36,9 @@ class LocalMapper : public KeyFrameSink {
 
   // Synchronous mode: processes every queued keyframe now.
   void run_pending();
+  // Waits until idle, then drops queued keyframes and recent points (after
+  // the map was cleared).
+  void reset();
   // Threaded mode: finishes the queue and stops the thread.
   void stop();
   LocalMapperStats stats() const;

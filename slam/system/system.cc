@@ -73,6 +73,14 @@ TrackResult System::track(const cv::Mat& bgr, const cv::Mat& depth, double times
   Frame frame(next_frame_id_++, timestamp, Features(std::move(keypoints), descriptors, depth, cam, &levels_));
   result.state = tracker_.track(std::move(frame), &result.stats);
   if (!settings_.threaded_mapping) mapper_.run_pending();
+  if (tracker_.wants_reset()) {
+    // Lost right after start: begin a new map (ORB-SLAM2 does the same).
+    mapper_.reset();
+    std::lock_guard<std::mutex> lock(map_.mutex());
+    map_.clear();
+    tracker_.reset();
+    ++resets_;
+  }
   auto t3 = std::chrono::steady_clock::now();
   if (result.state == TrackingState::kOk || result.state == TrackingState::kRelocalized) {
     std::lock_guard<std::mutex> lock(map_.mutex());

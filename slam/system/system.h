@@ -52,6 +52,7 @@ class System {
   size_t n_map_points() const;
   LocalMapperStats mapping_stats() const { return mapper_.stats(); }
   const SlamSettings& settings() const { return settings_; }
+  int resets() const { return resets_; }
 
  private:
   SlamSettings settings_;
@@ -62,6 +63,7 @@ class System {
   LocalMapper mapper_;
   Tracker tracker_;
   long next_frame_id_ = 0;
+  int resets_ = 0;
 };
 
 }  // namespace depot::slam

@@ -89,6 +89,16 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
   return state_;
 }
 
+void Tracker::reset() {
+  state_ = TrackingState::kNotInitialized;
+  last_ = Frame();
+  has_velocity_ = false;
+  reference_ = nullptr;
+  local_keyframes_.clear();
+  local_points_.clear();
+  for (TrajectoryEntry& e : trajectory_) e.reference = nullptr;
+}
+
 bool Tracker::initialize(Frame& frame) {
   // As ORB-SLAM2: enough keypoints overall, and points only where depth is known.
   int with_depth = 0;

@@ -15,7 +15,9 @@
 namespace depot::slam {
 
 struct TrackerParams {
-  int min_init_points = 500;       // keypoints needed to start (100 of them with depth)
+  // Keypoints (after rejection) needed to start, 100 of them with depth;
+  // ORB-SLAM2 asks 500 of all keypoints, too many once people are removed.
+  int min_init_points = 300;
   int max_frames_between_kf = 30;  // ~1 s at 30 Hz
   int min_frames_between_kf = 0;
   int local_map_min_inliers = 30;
@@ -49,6 +51,12 @@ class Tracker {
   TrackingState track(Frame frame, TrackingStats* stats = nullptr);
 
   TrackingState state() const { return state_; }
+  // True when tracking was lost while the map is still tiny (<= 5
+  // keyframes): the system should reset and initialise again (ORB-SLAM2).
+  bool wants_reset() const { return state_ == TrackingState::kLost && map_.n_keyframes() <= 5; }
+  // Back to NOT_INITIALIZED; frames tracked so far leave the trajectory
+  // (they belong to the abandoned map). The caller clears the map.
+  void reset();
   const Frame& last_frame() const { return last_; }
   const std::vector<TrajectoryEntry>& trajectory() const { return trajectory_; }
 

@@ -39,6 +39,7 @@ struct AblationArgs {
 struct Cell {
   std::vector<double> ate, precision, recall;
   int lost = 0;
+  size_t tracked = 0, frames = 0;  // frames in the final trajectory / given
 };
 
 double mean(const std::vector<double>& v) {
@@ -63,7 +64,7 @@ void run_ablation(const AblationArgs& a) {
   for (const auto& m : a.modes) slam::parse_rejection_mode(m);
   std::map<std::string, std::map<std::string, Cell>> table;  // scenario -> mode -> cell
   std::ofstream runs(fs::path(a.output) / "runs.csv");
-  runs << "scenario,seed,mode,ate_rmse_m,precision,recall,lost,frames\n";
+  runs << "scenario,seed,mode,ate_rmse_m,precision,recall,lost,tracked,frames\n";
   for (const auto& name : a.scenarios) {
     sim::Scenario scenario = sim::load_scenario(resolve_scenario(name));
     for (int seed = 1; seed <= a.seeds; ++seed) {
@@ -93,8 +94,10 @@ void run_ablation(const AblationArgs& a) {
         c.precision.push_back(s.score.precision());
         c.recall.push_back(s.score.recall());
         c.lost += s.lost;
+        c.tracked += s.trajectory.size();
+        c.frames += s.frames;
         runs << scenario.name << "," << seed << "," << mode << "," << ate << "," << s.score.precision() << ","
-             << s.score.recall() << "," << s.lost << "," << s.frames << "\n";
+             << s.score.recall() << "," << s.lost << "," << s.trajectory.size() << "," << s.frames << "\n";
         runs.flush();
         std::fprintf(stderr, "ablation: %s seed %d %-8s ATE %.4f m  precision %.3f recall %.3f  lost %d\n",
                      scenario.name.c_str(), seed, mode.c_str(), ate, s.score.precision(), s.score.recall(), s.lost);
@@ -129,14 +132,13 @@ void run_ablation(const AblationArgs& a) {
     md << "\n";
   }
   md << "\n## Rejection against ground truth (simulated detector at its default error level)\n\n"
-     << "| scenario | mode | precision | recall | lost frames |\n|---|---|---|---|---|\n";
+     << "| scenario | mode | precision | recall | lost frames | frames in trajectory |\n|---|---|---|---|---|---|\n";
   for (const auto& [scenario, modes] : table)
     for (const auto& m : a.modes) {
-      if (m == "orb") continue;
-      char buf[160];
-      std::snprintf(buf, sizeof(buf), "| %s | %s | %.3f ± %.3f | %.3f ± %.3f | %d |\n", scenario.c_str(), m.c_str(),
-                    mean(modes.at(m).precision), stddev(modes.at(m).precision), mean(modes.at(m).recall),
-                    stddev(modes.at(m).recall), modes.at(m).lost);
+      char buf[200];
+      std::snprintf(buf, sizeof(buf), "| %s | %s | %.3f ± %.3f | %.3f ± %.3f | %d | %zu of %zu |\n", scenario.c_str(),
+                    m.c_str(), mean(modes.at(m).precision), stddev(modes.at(m).precision), mean(modes.at(m).recall),
+                    stddev(modes.at(m).recall), modes.at(m).lost, modes.at(m).tracked, modes.at(m).frames);
       md << buf;
     }
   write_text_file_atomic((fs::path(a.output) / "ablation.md").string(), md.str());
