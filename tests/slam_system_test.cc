@@ -52,7 +52,7 @@ TEST(SlamSystem, StaticDepotWithSensorNoiseBelowOneCentimetre) {
   EXPECT_EQ(run.lost, 0);
   EXPECT_EQ(run.trajectory_size, 240u);
   EXPECT_LT(run.ate_rmse, 0.01);
-  RecordProperty("ate_rmse_m", std::to_string(run.ate_rmse));
+  std::printf("depot_static 240 frames: ATE RMSE %.4f m, %d lost\n", run.ate_rmse, run.lost);
 }
 
 TEST(SlamSystem, RealHandHeldFr1XyzMotionBelowOneAndAHalfCentimetres) {
@@ -73,6 +73,7 @@ TEST(SlamSystem, RealHandHeldFr1XyzMotionBelowOneAndAHalfCentimetres) {
   SlamRun run = run_slam(data);
   EXPECT_EQ(run.lost, 0);
   EXPECT_LT(run.ate_rmse, 0.015);
+  std::printf("fr1/xyz replay 300 frames: ATE RMSE %.4f m, %d lost\n", run.ate_rmse, run.lost);
 }
 
 TEST(SlamSystem, WalkingPeopleWithoutRejectionRunToTheEnd) {
