@@ -52,6 +52,7 @@ DatasetWriter::DatasetWriter(const DatasetOptions& options, const Scenario& scen
     : options_(options), scenario_(scenario), classes_(classes), instances_(instances) {
   if (options_.writer_threads < 1 || options_.writer_threads > 32)
     fail("--writers", "writer threads must be 1..32");
+  if (options_.png_compression < -1 || options_.png_compression > 9) fail("--png-level", "must be 0..9");
   dir_ = std::make_unique<StagedDirectory>(options_.output, options_.overwrite);
   for (const char* sub : {"rgb", "depth", "labels", "boxes_yolo"})
     fs::create_directory(fs::path(dir_->path()) / sub);
@@ -166,12 +167,13 @@ void DatasetWriter::write_job(Job& job, WriterTimings& timings) {
   cv::Mat depth16 = depth_to_u16(depth, scenario_.camera.depth_factor);
   auto t1 = std::chrono::steady_clock::now();
   const fs::path root = dir_->path();
+  const int level = options_.png_compression;
   write_png((root / "rgb" / (job.stamp_rgb + ".png")).string(), job.frame.bgr, PngKind::kColor,
-            options_.png_compression, timings.bytes);
+            level < 0 ? 0 : level, timings.bytes);
   write_png((root / "depth" / (job.stamp_depth + ".png")).string(), depth16, PngKind::kDepth,
-            options_.png_compression, timings.bytes);
+            level < 0 ? 1 : level, timings.bytes);
   write_png((root / "labels" / (job.stamp_rgb + ".png")).string(), job.frame.instance, PngKind::kLabels,
-            options_.png_compression, timings.bytes);
+            level < 0 ? 1 : level, timings.bytes);
   auto t2 = std::chrono::steady_clock::now();
   timings.sensor_ms += std::chrono::duration<double, std::milli>(t1 - t0).count();
   timings.encode_write_ms += std::chrono::duration<double, std::milli>(t2 - t1).count();

@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
     row("render instance labels", labels / n, base);
     row("convert (flip, depth, ids)", convert / n, base);
     row("sensor model", sensor / n, base);
-    row("PNG encode RGB", png_rgb / n, base);
+    row("PNG encode RGB (stored)", png_rgb / n, base);
     row("PNG encode depth", png_depth / n, base);
     row("PNG encode labels", png_labels / n, base);
     const double serial =

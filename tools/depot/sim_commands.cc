@@ -28,6 +28,7 @@ struct RenderArgs {
   bool quiet = false;
   int writers = 2;
   int width = 0;
+  int png_level = -1;
 };
 
 void run_render(const RenderArgs& a, const CLI::App& cmd) {
@@ -37,6 +38,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
   r.dataset.overwrite = a.overwrite;
   r.dataset.yolo_export = a.yolo;
   r.dataset.writer_threads = a.writers;
+  r.dataset.png_compression = a.png_level;
   r.gl = sim::parse_gl_backend(a.gl);
   if (cmd.count("--frames")) r.frames = a.frames;
   if (cmd.count("--seed")) r.seed = a.seed;
@@ -102,6 +104,9 @@ void register_sim_commands(CLI::App& app) {
   render->add_flag("--yolo", args->yolo,
                    "Also export a YOLO training set (yolo/images, yolo/labels, data.yaml)");
   render->add_option("--writers", args->writers, "PNG writer threads")->check(CLI::Range(1, 32));
+  render->add_option("--png-level", args->png_level,
+                     "zlib level 0-9 for all images (default: colour stored, depth and labels level 1)")
+      ->check(CLI::Range(0, 9));
   render->add_flag("-q,--quiet", args->quiet, "No progress bar");
   render->callback([args, render] { run_render(*args, *render); });
 
