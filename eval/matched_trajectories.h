@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "common/pose.h"
-#include "common/tum_io.h"
 #include "common/tum_association.h"
+#include "common/tum_io.h"
 
 namespace depot::eval {
 

@@ -30,7 +30,8 @@ bool MotionTruth::available(const std::string& dataset) {
 }
 
 MotionTruth::MotionTruth(const std::string& dataset) : root_(dataset) {
-  if (!available(dataset)) fail(dataset, "no ground-truth labels (labels.txt, object_poses.txt): not a simulated dataset");
+  if (!available(dataset))
+    fail(dataset, "no ground-truth labels (labels.txt, object_poses.txt): not a simulated dataset");
   for (const auto& f : read_file_list((fs::path(dataset) / "labels.txt").string()))
     label_files_[stamp_key(f.timestamp)] = f.path;
   const std::string poses = (fs::path(dataset) / "object_poses.txt").string();
@@ -45,12 +46,14 @@ MotionTruth::MotionTruth(const std::string& dataset) : root_(dataset) {
     int id = 0, moving = 0;
     double v[7];
     if (!(s >> stamp >> id >> v[0] >> v[1] >> v[2] >> v[3] >> v[4] >> v[5] >> v[6] >> moving))
-      fail(poses + ":" + std::to_string(line_no), "expected 'timestamp id tx ty tz qx qy qz qw moving'");
+      fail(poses + ":" + std::to_string(line_no),
+           "expected 'timestamp id tx ty tz qx qy qz qw moving'");
     if (moving) moving_ids_[stamp].insert(id);
   }
 }
 
-std::vector<uint8_t> MotionTruth::on_moving_object(double timestamp, const std::vector<cv::KeyPoint>& keypoints) const {
+std::vector<uint8_t> MotionTruth::on_moving_object(
+    double timestamp, const std::vector<cv::KeyPoint>& keypoints) const {
   const std::string key = stamp_key(timestamp);
   auto it = label_files_.find(key);
   if (it == label_files_.end()) fail(root_, "no label image for timestamp " + key);
@@ -71,10 +74,14 @@ std::vector<uint8_t> MotionTruth::on_moving_object(double timestamp, const std::
 void RejectionScore::add(const std::vector<uint8_t>& keep, const std::vector<uint8_t>& moving) {
   for (size_t i = 0; i < keep.size() && i < moving.size(); ++i) {
     const bool rejected = !keep[i];
-    if (rejected && moving[i]) ++true_positive;
-    else if (rejected) ++false_positive;
-    else if (moving[i]) ++false_negative;
-    else ++true_negative;
+    if (rejected && moving[i])
+      ++true_positive;
+    else if (rejected)
+      ++false_positive;
+    else if (moving[i])
+      ++false_negative;
+    else
+      ++true_negative;
   }
 }
 

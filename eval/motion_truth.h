@@ -19,12 +19,13 @@ class MotionTruth {
 
   // For each keypoint of the frame with this rgb timestamp: 1 when its pixel
   // belongs to an object flagged moving in that frame.
-  std::vector<uint8_t> on_moving_object(double timestamp, const std::vector<cv::KeyPoint>& keypoints) const;
+  std::vector<uint8_t> on_moving_object(double timestamp,
+                                        const std::vector<cv::KeyPoint>& keypoints) const;
 
  private:
   std::string root_;
-  std::map<std::string, std::string> label_files_;     // stamp -> labels/x.png
-  std::map<std::string, std::set<int>> moving_ids_;    // stamp -> ids moving
+  std::map<std::string, std::string> label_files_;   // stamp -> labels/x.png
+  std::map<std::string, std::set<int>> moving_ids_;  // stamp -> ids moving
 };
 
 // Precision / recall of rejection, counting keypoints: rejected = predicted

@@ -74,7 +74,9 @@ TEST(CliSlam, EmptyFolder) {
   expect_error(d, "not a TUM RGB-D folder");
 }
 
-TEST(CliSlam, MissingFolder) { expect_error("/nonexistent/dataset", "not found"); }
+TEST(CliSlam, MissingFolder) {
+  expect_error("/nonexistent/dataset", "not found");
+}
 
 TEST(CliSlam, RunsAndWritesATumTrajectory) {
   std::string d = render_small({"depot_static", 30, 320, false});

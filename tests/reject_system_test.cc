@@ -29,7 +29,8 @@ Result run(const std::string& dataset, slam::RejectionMode mode, bool threaded) 
   slam::SlamSettings settings = slam::load_settings(sequence.calibration_path());
   settings.threaded_mapping = threaded;
   slam::SimDetector detector(dataset);
-  slam::AprioriClasses classes = slam::AprioriClasses::load(std::string(DEPOT_SOURCE_DIR) + "/scenes/apriori/depot.yaml");
+  slam::AprioriClasses classes =
+      slam::AprioriClasses::load(std::string(DEPOT_SOURCE_DIR) + "/scenes/apriori/depot.yaml");
   classes.check_against(detector.class_names(), "depot.yaml", "sim");
   slam::RejectionFilter filter(mode, classes, &detector);
   slam::System system(settings, mode == slam::RejectionMode::kOrb ? nullptr : &filter);
@@ -46,7 +47,8 @@ Result run(const std::string& dataset, slam::RejectionMode mode, bool threaded) 
   }
   system.finish();
   auto gt = read_tum_trajectory(dataset + "/groundtruth.txt");
-  r.ate = eval::compute_ate(eval::match_trajectories(gt, system.trajectory(), {}, "gt", "est")).statistics.rmse;
+  r.ate = eval::compute_ate(eval::match_trajectories(gt, system.trajectory(), {}, "gt", "est"))
+              .statistics.rmse;
   return r;
 }
 
@@ -56,9 +58,11 @@ TEST(RejectSystem, FullModeBeatsPlainOrbOnWalkingPeople) {
   Result full = run(data, slam::RejectionMode::kFull, false);
   Result yolo = run(data, slam::RejectionMode::kOrbYolo, false);
   const double rho = eval::improvement_percent(orb.ate, full.ate);
-  std::printf("walking_xyz 200 frames: ATE orb %.4f, orb+yolo %.4f, full %.4f m (improvement %.1f %%); full "
-              "precision %.3f recall %.3f\n",
-              orb.ate, yolo.ate, full.ate, rho, full.score.precision(), full.score.recall());
+  std::printf(
+      "walking_xyz 200 frames: ATE orb %.4f, orb+yolo %.4f, full %.4f m (improvement %.1f %%); "
+      "full "
+      "precision %.3f recall %.3f\n",
+      orb.ate, yolo.ate, full.ate, rho, full.score.precision(), full.score.recall());
   EXPECT_LT(full.ate, 0.03);
   EXPECT_GT(rho, 80.0);
   EXPECT_EQ(full.lost, 0);

@@ -60,15 +60,16 @@ TEST(SlamSystem, RealHandHeldFr1XyzMotionBelowOneAndAHalfCentimetres) {
   const std::string gt = shared + "/tum/fr1_xyz_trajectory/groundtruth.txt";
   if (!std::filesystem::exists(gt)) GTEST_SKIP() << "shared data missing: " << gt;
   const std::string yaml = temp_path("fr1") + ".yaml";
-  std::ofstream(yaml) << "name: replay_fr1_xyz\n"
-                      << "scene: " << DEPOT_SOURCE_DIR << "/scenes/depot.yaml\n"
-                      << "classes: " << DEPOT_SOURCE_DIR << "/scenes/classes.yaml\n"
-                      << "frames: 300\n"
-                      << "timestamps: {file: " << shared << "/tum/fr1_xyz_trajectory/rgb.txt}\n"
-                      << "motion: {type: file, file: " << gt
-                      << ", position: [0.0, 0.6, 1.35], look_at: [0.0, 4.5, 0.9]}\n"
-                      << "actors:\n"
-                      << "  - {name: chair_a, type: chair, position: [-0.45, 3.95], yaw_deg: -90}\n";
+  std::ofstream(yaml)
+      << "name: replay_fr1_xyz\n"
+      << "scene: " << DEPOT_SOURCE_DIR << "/scenes/depot.yaml\n"
+      << "classes: " << DEPOT_SOURCE_DIR << "/scenes/classes.yaml\n"
+      << "frames: 300\n"
+      << "timestamps: {file: " << shared << "/tum/fr1_xyz_trajectory/rgb.txt}\n"
+      << "motion: {type: file, file: " << gt
+      << ", position: [0.0, 0.6, 1.35], look_at: [0.0, 4.5, 0.9]}\n"
+      << "actors:\n"
+      << "  - {name: chair_a, type: chair, position: [-0.45, 3.95], yaw_deg: -90}\n";
   std::string data = render_small({yaml, 300, 640, false});
   SlamRun run = run_slam(data);
   EXPECT_EQ(run.lost, 0);
@@ -85,7 +86,8 @@ TEST(SlamSystem, WalkingPeopleWithoutRejectionRunToTheEnd) {
   EXPECT_EQ(run.frames, 240);
   EXPECT_GT(run.trajectory_size, 200u);
   EXPECT_GT(run.ate_rmse, 0.0);
-  std::printf("walking_xyz without rejection: ATE RMSE %.4f m, %d lost frames\n", run.ate_rmse, run.lost);
+  std::printf("walking_xyz without rejection: ATE RMSE %.4f m, %d lost frames\n", run.ate_rmse,
+              run.lost);
 }
 
 }  // namespace

@@ -29,7 +29,8 @@ namespace {
 
 const size_t kMaxQueued = 6;
 
-void write_png(const std::string& path, const cv::Mat& img, PngKind kind, int compression, size_t& bytes) {
+void write_png(const std::string& path, const cv::Mat& img, PngKind kind, int compression,
+               size_t& bytes) {
   const std::vector<unsigned char> buf = encode_png(img, kind, compression);
   std::ofstream out(path, std::ios::binary);
   out.write(reinterpret_cast<const char*>(buf.data()), static_cast<std::streamsize>(buf.size()));
@@ -52,7 +53,8 @@ DatasetWriter::DatasetWriter(const DatasetOptions& options, const Scenario& scen
     : options_(options), scenario_(scenario), classes_(classes), instances_(instances) {
   if (options_.writer_threads < 1 || options_.writer_threads > 32)
     fail("--writers", "writer threads must be 1..32");
-  if (options_.png_compression < -1 || options_.png_compression > 9) fail("--png-level", "must be 0..9");
+  if (options_.png_compression < -1 || options_.png_compression > 9)
+    fail("--png-level", "must be 0..9");
   dir_ = std::make_unique<StagedDirectory>(options_.output, options_.overwrite);
   for (const char* sub : {"rgb", "depth", "labels", "boxes_yolo"})
     fs::create_directory(fs::path(dir_->path()) / sub);
@@ -172,8 +174,8 @@ void DatasetWriter::write_job(Job& job, WriterTimings& timings) {
             level < 0 ? 0 : level, timings.bytes);
   write_png((root / "depth" / (job.stamp_depth + ".png")).string(), depth16, PngKind::kDepth,
             level < 0 ? 1 : level, timings.bytes);
-  write_png((root / "labels" / (job.stamp_rgb + ".png")).string(), job.frame.instance, PngKind::kLabels,
-            level < 0 ? 1 : level, timings.bytes);
+  write_png((root / "labels" / (job.stamp_rgb + ".png")).string(), job.frame.instance,
+            PngKind::kLabels, level < 0 ? 1 : level, timings.bytes);
   auto t2 = std::chrono::steady_clock::now();
   timings.sensor_ms += std::chrono::duration<double, std::milli>(t1 - t0).count();
   timings.encode_write_ms += std::chrono::duration<double, std::milli>(t2 - t1).count();

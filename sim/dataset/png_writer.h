@@ -16,6 +16,7 @@ enum class PngKind {
 };
 
 // Encodes CV_8UC3 (BGR), CV_16UC1 or CV_8UC1 to PNG bytes (lossless).
-std::vector<unsigned char> encode_png(const cv::Mat& image, PngKind kind, int compression_level = 1);
+std::vector<unsigned char> encode_png(const cv::Mat& image, PngKind kind,
+                                      int compression_level = 1);
 
 }  // namespace depot::sim

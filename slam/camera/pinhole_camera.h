@@ -10,7 +10,7 @@ struct PinholeCamera {
   int width = 640;
   int height = 480;
   double fx = 535.4, fy = 539.2, cx = 320.1, cy = 247.6;
-  double bf = 40.0;  // baseline (m) x fx: 0.075 m for a Kinect
+  double bf = 40.0;              // baseline (m) x fx: 0.075 m for a Kinect
   double depth_factor = 5000.0;  // depth PNG units per metre
   double close_depth = 3.0;      // m: points closer are "close" (reliable depth)
 

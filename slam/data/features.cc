@@ -24,13 +24,15 @@ Features::Features(std::vector<cv::KeyPoint> kps, cv::Mat desc, const cv::Mat& d
   cell_h_ = static_cast<double>(camera.height) / kGridRows;
   grid_.assign(kGridCols * kGridRows, {});
   for (size_t i = 0; i < n; ++i) {
-    int cx = static_cast<int>(keypoints[i].pt.x / cell_w_), cy = static_cast<int>(keypoints[i].pt.y / cell_h_);
+    int cx = static_cast<int>(keypoints[i].pt.x / cell_w_),
+        cy = static_cast<int>(keypoints[i].pt.y / cell_h_);
     if (cx < 0 || cy < 0 || cx >= kGridCols || cy >= kGridRows) continue;
     grid_[cy * kGridCols + cx].push_back(i);
   }
 }
 
-std::vector<size_t> Features::in_area(double u, double v, double r, int min_level, int max_level) const {
+std::vector<size_t> Features::in_area(double u, double v, double r, int min_level,
+                                      int max_level) const {
   std::vector<size_t> out;
   const int x0 = std::max(0, static_cast<int>(std::floor((u - r) / cell_w_)));
   const int x1 = std::min(kGridCols - 1, static_cast<int>(std::floor((u + r) / cell_w_)));

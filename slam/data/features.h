@@ -23,7 +23,8 @@ class Features {
   size_t size() const { return keypoints.size(); }
   // Indices of keypoints within radius r of (u, v) at pyramid levels
   // [min_level, max_level] (negative = no bound).
-  std::vector<size_t> in_area(double u, double v, double r, int min_level = -1, int max_level = -1) const;
+  std::vector<size_t> in_area(double u, double v, double r, int min_level = -1,
+                              int max_level = -1) const;
   bool has_depth(size_t i) const { return depth[i] > 0; }
 
   std::vector<cv::KeyPoint> keypoints;

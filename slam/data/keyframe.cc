@@ -7,7 +7,12 @@
 namespace depot::slam {
 
 KeyFrame::KeyFrame(long id_, const Frame& f)
-    : id(id_), frame_id(f.id), timestamp(f.timestamp), features(f.features), map_points(f.map_points), T_cw(f.T_cw) {}
+    : id(id_),
+      frame_id(f.id),
+      timestamp(f.timestamp),
+      features(f.features),
+      map_points(f.map_points),
+      T_cw(f.T_cw) {}
 
 void KeyFrame::erase_map_point(MapPoint* mp) {
   for (auto& p : map_points)

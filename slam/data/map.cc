@@ -10,7 +10,8 @@ KeyFrame* Map::create_keyframe(const Frame& frame) {
 }
 
 MapPoint* Map::create_map_point(const Eigen::Vector3d& position, KeyFrame* reference) {
-  mp_storage_.push_back(std::make_unique<MapPoint>(static_cast<long>(mp_storage_.size()), position, reference));
+  mp_storage_.push_back(
+      std::make_unique<MapPoint>(static_cast<long>(mp_storage_.size()), position, reference));
   MapPoint* mp = mp_storage_.back().get();
   map_points_.insert(mp);
   return mp;

@@ -14,7 +14,9 @@ namespace depot::slam {
 
 struct ById {
   template <typename T>
-  bool operator()(const T* a, const T* b) const { return a->id < b->id; }
+  bool operator()(const T* a, const T* b) const {
+    return a->id < b->id;
+  }
 };
 
 class Map {

@@ -11,7 +11,9 @@ namespace depot::slam {
 MapPoint::MapPoint(long id_, const Eigen::Vector3d& p, KeyFrame* ref)
     : id(id_), position(p), reference(ref), first_keyframe_id(ref ? ref->id : -1) {}
 
-void MapPoint::add_observation(KeyFrame* kf, size_t index) { observations[kf] = index; }
+void MapPoint::add_observation(KeyFrame* kf, size_t index) {
+  observations[kf] = index;
+}
 
 void MapPoint::erase_observation(KeyFrame* kf) {
   if (!observations.erase(kf)) return;
@@ -53,7 +55,8 @@ void MapPoint::update_descriptor() {
   const size_t n = descs.size();
   std::vector<std::vector<int>> dist(n, std::vector<int>(n, 0));
   for (size_t i = 0; i < n; ++i)
-    for (size_t j = i + 1; j < n; ++j) dist[i][j] = dist[j][i] = descriptor_distance(descs[i], descs[j]);
+    for (size_t j = i + 1; j < n; ++j)
+      dist[i][j] = dist[j][i] = descriptor_distance(descs[i], descs[j]);
   int best = INT32_MAX;
   size_t best_i = 0;
   for (size_t i = 0; i < n; ++i) {

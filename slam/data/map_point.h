@@ -18,7 +18,7 @@ class MapPoint {
 
   long id;
   Eigen::Vector3d position;
-  cv::Mat descriptor;              // 1 x 32, the most representative
+  cv::Mat descriptor;               // 1 x 32, the most representative
   Eigen::Vector3d normal{0, 0, 1};  // mean viewing direction
   float min_distance = 0, max_distance = 0;
   std::map<KeyFrame*, size_t> observations;  // keyframe -> keypoint index
@@ -27,8 +27,8 @@ class MapPoint {
   int visible = 1, found = 1;  // tracking statistics
   bool bad = false;
   MapPoint* replaced_by = nullptr;
-  long last_seen_frame = -1;     // bookkeeping for local-map search
-  long local_map_for = -1;  // frame whose local map already holds the point
+  long last_seen_frame = -1;  // bookkeeping for local-map search
+  long local_map_for = -1;    // frame whose local map already holds the point
   long fuse_candidate_for = -1;
   long local_ba_for = -1;
 

@@ -9,8 +9,8 @@ struct ScaleLevels {
   int n_levels = 8;
   float scale_factor = 1.2f;
   float log_scale_factor = std::log(1.2f);
-  std::vector<float> scale;       // scale_factor^level
-  std::vector<float> sigma2;      // scale^2: variance of a keypoint position
+  std::vector<float> scale;   // scale_factor^level
+  std::vector<float> sigma2;  // scale^2: variance of a keypoint position
   std::vector<float> inv_sigma2;
 
   static ScaleLevels make(int n_levels, float scale_factor) {

@@ -12,7 +12,7 @@ struct Detection {
   std::string class_name;  // e.g. "person" (names come from configuration)
   int class_id = -1;       // index in the detector's class list
   float confidence = 0.0f;
-  cv::Rect2f box;          // pixels: x, y = top-left corner, width, height
+  cv::Rect2f box;  // pixels: x, y = top-left corner, width, height
 };
 
 // PAPER.md Eq. 8: YOLO's normalised centre format (X, Y, W, H) to pixels for

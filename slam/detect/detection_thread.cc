@@ -4,7 +4,8 @@
 
 namespace depot::slam {
 
-DetectionThread::DetectionThread(Detector& detector) : detector_(detector), thread_([this] { run(); }) {}
+DetectionThread::DetectionThread(Detector& detector)
+    : detector_(detector), thread_([this] { run(); }) {}
 
 DetectionThread::~DetectionThread() {
   {
@@ -30,7 +31,9 @@ std::vector<Detection> DetectionThread::wait(double* waited_ms, double* detect_m
   const auto t0 = std::chrono::steady_clock::now();
   std::unique_lock<std::mutex> lock(mutex_);
   cv_.wait(lock, [&] { return done_ || !has_job_; });
-  if (waited_ms) *waited_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  if (waited_ms)
+    *waited_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (detect_ms) *detect_ms = detect_ms_;
   if (error_) std::rethrow_exception(error_);
   has_job_ = false;
@@ -58,7 +61,8 @@ void DetectionThread::run() {
     } catch (...) {
       error = std::current_exception();
     }
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     {
       std::lock_guard<std::mutex> lock(mutex_);
       result_ = std::move(result);

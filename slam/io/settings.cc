@@ -11,18 +11,21 @@ namespace depot::slam {
 namespace {
 
 template <typename T>
-T read(const YAML::Node& n, const char* key, T fallback, const std::string& path, double lo, double hi) {
+T read(const YAML::Node& n, const char* key, T fallback, const std::string& path, double lo,
+       double hi) {
   if (!n || !n[key]) return fallback;
   T v;
   try {
     v = n[key].as<T>();
   } catch (const YAML::Exception&) {
-    fail(path + ":" + std::to_string(n[key].Mark().line + 1), std::string("bad value for '") + key + "'");
+    fail(path + ":" + std::to_string(n[key].Mark().line + 1),
+         std::string("bad value for '") + key + "'");
   }
   const double d = static_cast<double>(v);
   if (!std::isfinite(d) || d < lo || d > hi)
     fail(path + ":" + std::to_string(n[key].Mark().line + 1),
-         std::string("'") + key + "' out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+         std::string("'") + key + "' out of range [" + std::to_string(lo) + ", " +
+             std::to_string(hi) + "]");
   return v;
 }
 
@@ -40,7 +43,8 @@ SlamSettings load_settings(const std::string& path, const SlamSettings& defaults
   s.camera.cx = read<double>(cam, "cx", s.camera.cx, path, 0, 8192);
   s.camera.cy = read<double>(cam, "cy", s.camera.cy, path, 0, 8192);
   // Virtual stereo baseline (ORB-SLAM2's Camera.bf); default 0.08 m x fx.
-  const double baseline = read<double>(cam, "baseline", s.camera.bf / s.camera.fx, path, 0.001, 1.0);
+  const double baseline =
+      read<double>(cam, "baseline", s.camera.bf / s.camera.fx, path, 0.001, 1.0);
   s.camera.bf = baseline * s.camera.fx;
   const YAML::Node depth = root["depth"];
   s.camera.depth_factor = read<double>(depth, "factor", s.camera.depth_factor, path, 1e-3, 1e6);
@@ -54,8 +58,10 @@ SlamSettings load_settings(const std::string& path, const SlamSettings& defaults
   s.orb.ini_fast = read<int>(orb, "ini_fast", s.orb.ini_fast, path, 1, 255);
   s.orb.min_fast = read<int>(orb, "min_fast", s.orb.min_fast, path, 1, 255);
   const YAML::Node tr = root["tracking"];
-  s.tracker.max_frames_between_kf = read<int>(tr, "max_frames_between_keyframes", s.tracker.max_frames_between_kf, path, 1, 1000);
-  s.tracker.min_init_points = read<int>(tr, "min_init_points", s.tracker.min_init_points, path, 10, 10000);
+  s.tracker.max_frames_between_kf =
+      read<int>(tr, "max_frames_between_keyframes", s.tracker.max_frames_between_kf, path, 1, 1000);
+  s.tracker.min_init_points =
+      read<int>(tr, "min_init_points", s.tracker.min_init_points, path, 10, 10000);
   const YAML::Node mapping = root["mapping"];
   if (mapping && mapping["threaded"]) s.threaded_mapping = mapping["threaded"].as<bool>();
   return s;

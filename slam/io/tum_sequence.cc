@@ -11,7 +11,8 @@ namespace fs = std::filesystem;
 
 namespace depot::slam {
 
-TumSequence::TumSequence(const std::string& folder, double depth_factor) : folder_(folder), depth_factor_(depth_factor) {
+TumSequence::TumSequence(const std::string& folder, double depth_factor)
+    : folder_(folder), depth_factor_(depth_factor) {
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) fail(folder, "dataset folder not found");
   const fs::path root(folder);
@@ -30,7 +31,8 @@ TumSequence::TumSequence(const std::string& folder, double depth_factor) : folde
     frames_.push_back({rgb[m.reference_index].timestamp, rgb[m.reference_index].path,
                        depth[m.estimate_index].timestamp, depth[m.estimate_index].path});
   if (frames_.empty())
-    fail((root / "rgb.txt").string(), "no rgb timestamp has a depth timestamp within 0.02 s in depth.txt");
+    fail((root / "rgb.txt").string(),
+         "no rgb timestamp has a depth timestamp within 0.02 s in depth.txt");
 }
 
 std::string TumSequence::calibration_path() const {
@@ -48,7 +50,8 @@ void TumSequence::load(size_t i, cv::Mat& bgr, cv::Mat& depth_metres) const {
   if (bgr.empty()) fail(rgb_path.string(), "unreadable image");
   cv::Mat raw = cv::imread(depth_path.string(), cv::IMREAD_UNCHANGED);
   if (raw.empty()) fail(depth_path.string(), "unreadable depth image");
-  if (raw.type() != CV_16UC1) fail(depth_path.string(), "depth must be a 16-bit single-channel PNG");
+  if (raw.type() != CV_16UC1)
+    fail(depth_path.string(), "depth must be a 16-bit single-channel PNG");
   if (raw.size() != bgr.size()) fail(depth_path.string(), "depth and colour sizes differ");
   raw.convertTo(depth_metres, CV_32F, 1.0 / depth_factor_);
 }

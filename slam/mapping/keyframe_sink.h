@@ -12,9 +12,9 @@ class KeyFrameSink {
  public:
   virtual ~KeyFrameSink() = default;
   virtual void insert_keyframe(KeyFrame* kf) = 0;
-  virtual bool idle() const = 0;       // waiting for work
-  virtual size_t queued() const = 0;   // keyframes not processed yet
-  virtual void interrupt_ba() = 0;     // ask a running bundle adjustment to stop early
+  virtual bool idle() const = 0;      // waiting for work
+  virtual size_t queued() const = 0;  // keyframes not processed yet
+  virtual void interrupt_ba() = 0;    // ask a running bundle adjustment to stop early
 };
 
 }  // namespace depot::slam

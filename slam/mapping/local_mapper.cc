@@ -12,7 +12,9 @@ LocalMapper::LocalMapper(Map& map, bool threaded) : map_(map), threaded_(threade
   if (threaded_) thread_ = std::thread([this] { thread_main(); });
 }
 
-LocalMapper::~LocalMapper() { stop(); }
+LocalMapper::~LocalMapper() {
+  stop();
+}
 
 void LocalMapper::insert_keyframe(KeyFrame* kf) {
   {
@@ -106,7 +108,8 @@ void LocalMapper::process(KeyFrame* kf) {
     auto t0 = std::chrono::steady_clock::now();
     local_bundle_adjustment(kf, map_, &abort_ba_);
     std::lock_guard<std::mutex> lock(queue_mutex_);
-    stats_.ba_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    stats_.ba_ms +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   }
   {
     std::lock_guard<std::mutex> lock(map_.mutex());
@@ -182,8 +185,10 @@ void LocalMapper::create_new_map_points(KeyFrame* kf) {
     for (auto [i1, i2] : pairs) {
       const cv::KeyPoint& k1 = f1.keypoints[i1];
       const cv::KeyPoint& k2 = f2.keypoints[i2];
-      const Eigen::Vector3d r1 = T1w.linear().transpose() * cam.unproject(k1.pt.x, k1.pt.y, 1.0).normalized();
-      const Eigen::Vector3d r2 = T2w.linear().transpose() * cam.unproject(k2.pt.x, k2.pt.y, 1.0).normalized();
+      const Eigen::Vector3d r1 =
+          T1w.linear().transpose() * cam.unproject(k1.pt.x, k1.pt.y, 1.0).normalized();
+      const Eigen::Vector3d r2 =
+          T2w.linear().transpose() * cam.unproject(k2.pt.x, k2.pt.y, 1.0).normalized();
       const double parallax_cos = r1.dot(r2);
       // With depth, a stereo-like parallax bound tells which is more precise.
       double depth_cos1 = 2.0, depth_cos2 = 2.0;
@@ -197,7 +202,8 @@ void LocalMapper::create_new_map_points(KeyFrame* kf) {
         Eigen::Matrix<double, 3, 4> P1, P2;
         P1 << T1w.linear(), T1w.translation();
         P2 << T2w.linear(), T2w.translation();
-        const Eigen::Vector3d n1 = cam.unproject(k1.pt.x, k1.pt.y, 1.0), n2 = cam.unproject(k2.pt.x, k2.pt.y, 1.0);
+        const Eigen::Vector3d n1 = cam.unproject(k1.pt.x, k1.pt.y, 1.0),
+                              n2 = cam.unproject(k2.pt.x, k2.pt.y, 1.0);
         A.row(0) = n1.x() * P1.row(2) - P1.row(0);
         A.row(1) = n1.y() * P1.row(2) - P1.row(1);
         A.row(2) = n2.x() * P2.row(2) - P2.row(0);

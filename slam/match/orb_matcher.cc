@@ -42,7 +42,8 @@ class RotationHistogram {
     // Bins much smaller than the best do not count as consistent.
     std::vector<size_t> out;
     for (int i = 0; i < kHistogramLength; ++i) {
-      bool keep = (i == best[0]) || (i == best[1] && top[1] >= 0.1 * top[0]) || (i == best[2] && top[2] >= 0.1 * top[0]);
+      bool keep = (i == best[0]) || (i == best[1] && top[1] >= 0.1 * top[0]) ||
+                  (i == best[2] && top[2] >= 0.1 * top[0]);
       if (!keep) out.insert(out.end(), bins_[i].begin(), bins_[i].end());
     }
     return out;
@@ -52,7 +53,9 @@ class RotationHistogram {
   std::array<std::vector<size_t>, kHistogramLength> bins_;
 };
 
-double radius_by_viewing_cos(double view_cos) { return view_cos > 0.998 ? 2.5 : 4.0; }
+double radius_by_viewing_cos(double view_cos) {
+  return view_cos > 0.998 ? 2.5 : 4.0;
+}
 
 }  // namespace
 
@@ -157,7 +160,8 @@ int match_local_points(Frame& frame, const std::vector<ProjectedPoint>& points, 
   return matches;
 }
 
-int match_by_descriptor(const KeyFrame& kf, const Frame& frame, std::vector<MapPoint*>& matches, float ratio) {
+int match_by_descriptor(const KeyFrame& kf, const Frame& frame, std::vector<MapPoint*>& matches,
+                        float ratio) {
   matches.assign(frame.size(), nullptr);
   std::vector<size_t> kf_index;
   cv::Mat kf_desc;
@@ -194,7 +198,8 @@ int match_by_descriptor(const KeyFrame& kf, const Frame& frame, std::vector<MapP
   return n;
 }
 
-int match_for_triangulation(const KeyFrame& kf1, const KeyFrame& kf2, std::vector<std::pair<size_t, size_t>>& pairs) {
+int match_for_triangulation(const KeyFrame& kf1, const KeyFrame& kf2,
+                            std::vector<std::pair<size_t, size_t>>& pairs) {
   pairs.clear();
   const Features& f1 = kf1.features;
   const Features& f2 = kf2.features;
@@ -222,7 +227,8 @@ int match_for_triangulation(const KeyFrame& kf1, const KeyFrame& kf2, std::vecto
   for (size_t i = 0; i < f1.size(); ++i) {
     if (kf1.map_points[i]) continue;
     const cv::KeyPoint& k1 = f1.keypoints[i];
-    const Eigen::Vector3d line = F12.transpose() * Eigen::Vector3d(k1.pt.x, k1.pt.y, 1.0);  // in image 2
+    const Eigen::Vector3d line =
+        F12.transpose() * Eigen::Vector3d(k1.pt.x, k1.pt.y, 1.0);  // in image 2
     const double norm = line.head<2>().squaredNorm();
     if (norm < 1e-12) continue;
     const uint8_t* d1 = f1.descriptors.ptr<uint8_t>(static_cast<int>(i));

@@ -34,15 +34,18 @@ int match_by_projection(Frame& current, const Frame& last, float radius_factor);
 
 // Local-map tracking: candidates near each projection, best within TH_HIGH
 // and a ratio to the second best at the same level.
-int match_local_points(Frame& frame, const std::vector<ProjectedPoint>& points, float radius_factor);
+int match_local_points(Frame& frame, const std::vector<ProjectedPoint>& points,
+                       float radius_factor);
 
 // A keyframe's map points against all keypoints of a frame by descriptor
 // (ratio test and orientation consistency); `matches` is per frame keypoint.
-int match_by_descriptor(const KeyFrame& kf, const Frame& frame, std::vector<MapPoint*>& matches, float ratio);
+int match_by_descriptor(const KeyFrame& kf, const Frame& frame, std::vector<MapPoint*>& matches,
+                        float ratio);
 
 // Unmatched keypoint pairs of two keyframes that agree with the epipolar
 // geometry of their poses.
-int match_for_triangulation(const KeyFrame& kf1, const KeyFrame& kf2, std::vector<std::pair<size_t, size_t>>& pairs);
+int match_for_triangulation(const KeyFrame& kf1, const KeyFrame& kf2,
+                            std::vector<std::pair<size_t, size_t>>& pairs);
 
 // Projects points into kf and merges each with the map point already at the
 // matching keypoint (keeping the better observed one) or adds the

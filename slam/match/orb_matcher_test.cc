@@ -46,7 +46,8 @@ KeyFrame* make_keyframe(Map& map, Frame& frame) {
   for (size_t i = 0; i < frame.size(); ++i) {
     if (!frame.features.has_depth(i)) continue;
     const auto& kp = frame.features.keypoints[i];
-    MapPoint* mp = map.create_map_point(frame.features.camera.unproject(kp.pt.x, kp.pt.y, frame.features.depth[i]), kf);
+    MapPoint* mp = map.create_map_point(
+        frame.features.camera.unproject(kp.pt.x, kp.pt.y, frame.features.depth[i]), kf);
     mp->add_observation(kf, i);
     kf->add_map_point(mp, i);
     mp->update_descriptor();

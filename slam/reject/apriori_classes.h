@@ -20,8 +20,8 @@ class AprioriClasses {
   MotionClass classify(const std::string& class_name) const;
   // Fails (depot::Error naming `table_name`) when the table lists a class the
   // detector cannot output.
-  void check_against(const std::vector<std::string>& detector_classes, const std::string& table_name,
-                     const std::string& detector_name) const;
+  void check_against(const std::vector<std::string>& detector_classes,
+                     const std::string& table_name, const std::string& detector_name) const;
   const std::set<std::string>& dynamic() const { return dynamic_; }
   const std::set<std::string>& potentially_dynamic() const { return potential_; }
 

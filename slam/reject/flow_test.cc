@@ -5,8 +5,8 @@
 
 namespace depot::slam {
 
-FlowTestResult mean_static_flow(const std::vector<cv::Point2f>& flow, const std::vector<uint8_t>& ok,
-                                const FlowTestParams& params) {
+FlowTestResult mean_static_flow(const std::vector<cv::Point2f>& flow,
+                                const std::vector<uint8_t>& ok, const FlowTestParams& params) {
   FlowTestResult r;
   cv::Point2f sum(0, 0);
   for (size_t i = 0; i < flow.size(); ++i) {

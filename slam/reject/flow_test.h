@@ -20,8 +20,8 @@ struct FlowTestResult {
 };
 
 // Mean over the reference flows that tracked (ok).
-FlowTestResult mean_static_flow(const std::vector<cv::Point2f>& reference_flow, const std::vector<uint8_t>& ok,
-                                const FlowTestParams& params);
+FlowTestResult mean_static_flow(const std::vector<cv::Point2f>& reference_flow,
+                                const std::vector<uint8_t>& ok, const FlowTestParams& params);
 
 // True when the flow deviates from the mean by more than z (Eq. 7).
 inline bool flow_is_dynamic(const cv::Point2f& flow, const FlowTestResult& t) {

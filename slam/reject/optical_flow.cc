@@ -7,7 +7,8 @@ namespace depot::slam {
 void SparseFlow::next_frame(const cv::Mat& gray) {
   previous_ = std::move(current_);
   current_.clear();
-  cv::buildOpticalFlowPyramid(gray, current_, cv::Size(params_.window, params_.window), params_.levels);
+  cv::buildOpticalFlowPyramid(gray, current_, cv::Size(params_.window, params_.window),
+                              params_.levels);
 }
 
 void SparseFlow::flow(const std::vector<cv::Point2f>& points, std::vector<cv::Point2f>& flow,
@@ -17,17 +18,20 @@ void SparseFlow::flow(const std::vector<cv::Point2f>& points, std::vector<cv::Po
   if (previous_.empty() || points.empty()) return;
   // Track current keypoints back into the previous frame, then forward again
   // to reject inconsistent tracks; flow = current - previous.
-  const cv::TermCriteria term(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, params_.iterations, 0.01);
+  const cv::TermCriteria term(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, params_.iterations,
+                              0.01);
   const cv::Size win(params_.window, params_.window);
   std::vector<cv::Point2f> back;
   std::vector<uint8_t> status;
   std::vector<float> error;
-  cv::calcOpticalFlowPyrLK(current_, previous_, points, back, status, error, win, params_.levels, term);
+  cv::calcOpticalFlowPyrLK(current_, previous_, points, back, status, error, win, params_.levels,
+                           term);
   std::vector<cv::Point2f> forth;
   std::vector<uint8_t> status2;
   std::vector<float> error2;
   if (params_.max_forward_backward > 0)
-    cv::calcOpticalFlowPyrLK(previous_, current_, back, forth, status2, error2, win, params_.levels, term);
+    cv::calcOpticalFlowPyrLK(previous_, current_, back, forth, status2, error2, win, params_.levels,
+                             term);
   for (size_t i = 0; i < points.size(); ++i) {
     if (!status[i] || error[i] > params_.max_error) continue;
     if (params_.max_forward_backward > 0) {

@@ -10,7 +10,8 @@ bool inside(const cv::Rect2f& box, const cv::Point2f& p) {
 }  // namespace
 
 std::vector<PointSet> assign_point_sets(const std::vector<cv::KeyPoint>& keypoints,
-                                        const std::vector<Detection>& detections, const AprioriClasses& classes) {
+                                        const std::vector<Detection>& detections,
+                                        const AprioriClasses& classes) {
   std::vector<PointSet> sets(keypoints.size(), PointSet::kP);
   std::vector<MotionClass> motion;
   for (const auto& d : detections) motion.push_back(classes.classify(d.class_name));
@@ -34,8 +35,9 @@ std::vector<PointSet> assign_point_sets(const std::vector<cv::KeyPoint>& keypoin
   return sets;
 }
 
-void move_background_to_q(const std::vector<cv::KeyPoint>& keypoints, const std::vector<float>& depth,
-                          const std::vector<Detection>& detections, const AprioriClasses& classes, float margin,
+void move_background_to_q(const std::vector<cv::KeyPoint>& keypoints,
+                          const std::vector<float>& depth, const std::vector<Detection>& detections,
+                          const AprioriClasses& classes, float margin,
                           std::vector<PointSet>& sets) {
   for (const Detection& d : detections) {
     if (classes.classify(d.class_name) != MotionClass::kDynamic) continue;
@@ -63,11 +65,13 @@ void move_background_to_q(const std::vector<cv::KeyPoint>& keypoints, const std:
 }
 
 std::vector<bool> inside_dynamic_boxes(const std::vector<cv::KeyPoint>& keypoints,
-                                       const std::vector<Detection>& detections, const AprioriClasses& classes) {
+                                       const std::vector<Detection>& detections,
+                                       const AprioriClasses& classes) {
   std::vector<bool> out(keypoints.size(), false);
   for (size_t k = 0; k < detections.size(); ++k) {
     if (classes.classify(detections[k].class_name) != MotionClass::kDynamic) continue;
-    for (size_t i = 0; i < keypoints.size(); ++i) out[i] = out[i] || inside(detections[k].box, keypoints[i].pt);
+    for (size_t i = 0; i < keypoints.size(); ++i)
+      out[i] = out[i] || inside(detections[k].box, keypoints[i].pt);
   }
   return out;
 }

@@ -17,17 +17,19 @@ namespace depot::slam {
 enum class PointSet : uint8_t { kP = 0, kQ = 1, kZ = 2 };
 
 std::vector<PointSet> assign_point_sets(const std::vector<cv::KeyPoint>& keypoints,
-                                        const std::vector<Detection>& detections, const AprioriClasses& classes);
+                                        const std::vector<Detection>& detections,
+                                        const AprioriClasses& classes);
 
 // Our extension: Z points lying more than `margin` (m) behind their box's
 // object (the 25th percentile of the box's keypoint depths), or without
 // depth (depth[i] <= 0: beyond the sensor's range or at an edge), move to Q.
-void move_background_to_q(const std::vector<cv::KeyPoint>& keypoints, const std::vector<float>& depth,
-                          const std::vector<Detection>& detections, const AprioriClasses& classes, float margin,
-                          std::vector<PointSet>& sets);
+void move_background_to_q(const std::vector<cv::KeyPoint>& keypoints,
+                          const std::vector<float>& depth, const std::vector<Detection>& detections,
+                          const AprioriClasses& classes, float margin, std::vector<PointSet>& sets);
 
 // orb+yolo: inside any dynamic box at all (no overlap rule).
 std::vector<bool> inside_dynamic_boxes(const std::vector<cv::KeyPoint>& keypoints,
-                                       const std::vector<Detection>& detections, const AprioriClasses& classes);
+                                       const std::vector<Detection>& detections,
+                                       const AprioriClasses& classes);
 
 }  // namespace depot::slam

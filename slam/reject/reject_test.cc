@@ -14,7 +14,9 @@
 namespace depot::slam {
 namespace {
 
-AprioriClasses table() { return AprioriClasses({"person", "dog"}, {"chair", "monitor_stand"}); }
+AprioriClasses table() {
+  return AprioriClasses({"person", "dog"}, {"chair", "monitor_stand"});
+}
 
 Detection det(const std::string& cls, float x, float y, float w, float h) {
   Detection d;
@@ -24,16 +26,19 @@ Detection det(const std::string& cls, float x, float y, float w, float h) {
   return d;
 }
 
-cv::KeyPoint kp(float x, float y) { return cv::KeyPoint(x, y, 31.0f); }
+cv::KeyPoint kp(float x, float y) {
+  return cv::KeyPoint(x, y, 31.0f);
+}
 
 TEST(PointSets, FollowTheOverlapRule) {
-  const std::vector<Detection> dets = {det("person", 100, 100, 100, 200), det("tv", 150, 120, 100, 60),
+  const std::vector<Detection> dets = {det("person", 100, 100, 100, 200),
+                                       det("tv", 150, 120, 100, 60),
                                        det("chair", 400, 300, 80, 80)};
-  const std::vector<cv::KeyPoint> kps = {kp(110, 250),   // person only -> Z
-                                         kp(160, 130),   // person and tv overlap -> Q (flow decides)
-                                         kp(220, 130),   // tv only (static class) -> P
-                                         kp(420, 320),   // chair -> Q
-                                         kp(10, 10)};    // nothing -> P
+  const std::vector<cv::KeyPoint> kps = {kp(110, 250),  // person only -> Z
+                                         kp(160, 130),  // person and tv overlap -> Q (flow decides)
+                                         kp(220, 130),  // tv only (static class) -> P
+                                         kp(420, 320),  // chair -> Q
+                                         kp(10, 10)};   // nothing -> P
   auto sets = assign_point_sets(kps, dets, table());
   EXPECT_EQ(sets[0], PointSet::kZ);
   EXPECT_EQ(sets[1], PointSet::kQ);
@@ -121,7 +126,8 @@ TEST(AprioriClasses, RejectsUnknownClassesAndContradictions) {
   EXPECT_EQ(t.classify("chair"), MotionClass::kPotentiallyDynamic);
   EXPECT_EQ(t.classify("rack"), MotionClass::kStatic);
   EXPECT_THROW(t.check_against({"person", "dog", "chair"}, "table.yaml", "sim"), Error);
-  EXPECT_NO_THROW(t.check_against({"person", "dog", "chair", "monitor_stand", "tv"}, "table.yaml", "sim"));
+  EXPECT_NO_THROW(
+      t.check_against({"person", "dog", "chair", "monitor_stand", "tv"}, "table.yaml", "sim"));
   EXPECT_THROW(parse_rejection_mode("orb+magic"), Error);
 }
 

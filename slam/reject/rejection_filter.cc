@@ -23,20 +23,32 @@ RejectionMode parse_rejection_mode(const std::string& name) {
 
 const char* rejection_mode_name(RejectionMode m) {
   switch (m) {
-    case RejectionMode::kOrb: return "orb";
-    case RejectionMode::kOrbYolo: return "orb+yolo";
-    case RejectionMode::kOrbLk: return "orb+lk";
-    case RejectionMode::kFull: return "full";
+    case RejectionMode::kOrb:
+      return "orb";
+    case RejectionMode::kOrbYolo:
+      return "orb+yolo";
+    case RejectionMode::kOrbLk:
+      return "orb+lk";
+    case RejectionMode::kFull:
+      return "full";
   }
   return "orb";
 }
 
-bool mode_uses_detector(RejectionMode m) { return m == RejectionMode::kOrbYolo || m == RejectionMode::kFull; }
-bool mode_uses_flow(RejectionMode m) { return m == RejectionMode::kOrbLk || m == RejectionMode::kFull; }
+bool mode_uses_detector(RejectionMode m) {
+  return m == RejectionMode::kOrbYolo || m == RejectionMode::kFull;
+}
+bool mode_uses_flow(RejectionMode m) {
+  return m == RejectionMode::kOrbLk || m == RejectionMode::kFull;
+}
 
 RejectionFilter::RejectionFilter(RejectionMode mode, AprioriClasses classes, Detector* detector,
                                  const RejectionParams& params)
-    : mode_(mode), classes_(std::move(classes)), detector_(detector), params_(params), flow_(params.flow) {
+    : mode_(mode),
+      classes_(std::move(classes)),
+      detector_(detector),
+      params_(params),
+      flow_(params.flow) {
   if (mode_uses_detector(mode_)) {
     if (!detector_) fail(rejection_mode_name(mode_), "this mode needs a detector");
     thread_ = std::make_unique<DetectionThread>(*detector_);
@@ -104,10 +116,13 @@ void RejectionFilter::filter(const FrameImages& images, const std::vector<cv::Ke
       if (params_.background_depth_margin > 0) {
         std::vector<float> depth(keypoints.size(), 0.0f);
         for (size_t i = 0; i < keypoints.size(); ++i) {
-          const int x = static_cast<int>(keypoints[i].pt.x + 0.5f), y = static_cast<int>(keypoints[i].pt.y + 0.5f);
-          if (x >= 0 && y >= 0 && x < images.depth.cols && y < images.depth.rows) depth[i] = images.depth.at<float>(y, x);
+          const int x = static_cast<int>(keypoints[i].pt.x + 0.5f),
+                    y = static_cast<int>(keypoints[i].pt.y + 0.5f);
+          if (x >= 0 && y >= 0 && x < images.depth.cols && y < images.depth.rows)
+            depth[i] = images.depth.at<float>(y, x);
         }
-        move_background_to_q(keypoints, depth, detections_, classes_, params_.background_depth_margin, sets);
+        move_background_to_q(keypoints, depth, detections_, classes_,
+                             params_.background_depth_margin, sets);
       }
       std::vector<size_t> q_index, p_sample;
       std::vector<size_t> p_index;

@@ -52,7 +52,8 @@ struct RejectionStats {
 class RejectionFilter : public KeypointFilter {
  public:
   // `detector` (not owned) is required by orb+yolo and full.
-  RejectionFilter(RejectionMode mode, AprioriClasses classes, Detector* detector, const RejectionParams& params = {});
+  RejectionFilter(RejectionMode mode, AprioriClasses classes, Detector* detector,
+                  const RejectionParams& params = {});
 
   void begin_frame(const FrameImages& images) override;
   void filter(const FrameImages& images, const std::vector<cv::KeyPoint>& keypoints,

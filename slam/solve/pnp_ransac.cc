@@ -5,8 +5,9 @@
 
 namespace depot::slam {
 
-PnpResult solve_pnp_ransac(const std::vector<Eigen::Vector3d>& world_points, const std::vector<Eigen::Vector2d>& pixels,
-                           const PinholeCamera& camera, int iterations, double max_error_px, int min_inliers) {
+PnpResult solve_pnp_ransac(const std::vector<Eigen::Vector3d>& world_points,
+                           const std::vector<Eigen::Vector2d>& pixels, const PinholeCamera& camera,
+                           int iterations, double max_error_px, int min_inliers) {
   PnpResult result;
   if (world_points.size() < 6 || world_points.size() != pixels.size()) return result;
   std::vector<cv::Point3d> object;
@@ -20,8 +21,8 @@ PnpResult solve_pnp_ransac(const std::vector<Eigen::Vector3d>& world_points, con
   std::vector<int> inliers;
   // A fixed RNG state keeps relocalisation deterministic.
   cv::theRNG().state = 0x12345678;
-  if (!cv::solvePnPRansac(object, image, K, cv::noArray(), rvec, tvec, false, iterations, max_error_px, 0.99, inliers,
-                          cv::SOLVEPNP_EPNP))
+  if (!cv::solvePnPRansac(object, image, K, cv::noArray(), rvec, tvec, false, iterations,
+                          max_error_px, 0.99, inliers, cv::SOLVEPNP_EPNP))
     return result;
   if (static_cast<int>(inliers.size()) < min_inliers) return result;
   cv::Mat R;

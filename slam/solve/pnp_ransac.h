@@ -16,8 +16,8 @@ struct PnpResult {
   std::vector<int> inliers;  // indices into the input correspondences
 };
 
-PnpResult solve_pnp_ransac(const std::vector<Eigen::Vector3d>& world_points, const std::vector<Eigen::Vector2d>& pixels,
-                           const PinholeCamera& camera, int iterations = 300, double max_error_px = 4.0,
-                           int min_inliers = 10);
+PnpResult solve_pnp_ransac(const std::vector<Eigen::Vector3d>& world_points,
+                           const std::vector<Eigen::Vector2d>& pixels, const PinholeCamera& camera,
+                           int iterations = 300, double max_error_px = 4.0, int min_inliers = 10);
 
 }  // namespace depot::slam

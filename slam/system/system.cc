@@ -9,7 +9,8 @@
 namespace depot::slam {
 namespace {
 
-double ms_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
+double ms_between(std::chrono::steady_clock::time_point a,
+                  std::chrono::steady_clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
@@ -37,14 +38,18 @@ System::System(const SlamSettings& settings, KeypointFilter* filter)
       mapper_(map_, settings.threaded_mapping),
       tracker_(map_, mapper_, settings.tracker) {}
 
-System::~System() { mapper_.stop(); }
+System::~System() {
+  mapper_.stop();
+}
 
 TrackResult System::track(const cv::Mat& bgr, const cv::Mat& depth, double timestamp) {
   const PinholeCamera& cam = settings_.camera;
   if (bgr.type() != CV_8UC3 || bgr.cols != cam.width || bgr.rows != cam.height)
-    fail("frame " + std::to_string(next_frame_id_), "colour image must be CV_8UC3 of the camera's size");
+    fail("frame " + std::to_string(next_frame_id_),
+         "colour image must be CV_8UC3 of the camera's size");
   if (depth.type() != CV_32F || depth.size() != bgr.size())
-    fail("frame " + std::to_string(next_frame_id_), "depth must be CV_32F metres of the colour image's size");
+    fail("frame " + std::to_string(next_frame_id_),
+         "depth must be CV_32F metres of the colour image's size");
   TrackResult result;
   auto t0 = std::chrono::steady_clock::now();
   cv::Mat gray;
@@ -70,7 +75,8 @@ TrackResult System::track(const cv::Mat& bgr, const cv::Mat& depth, double times
   }
   auto t2 = std::chrono::steady_clock::now();
   result.kept = static_cast<int>(keypoints.size());
-  Frame frame(next_frame_id_++, timestamp, Features(std::move(keypoints), descriptors, depth, cam, &levels_));
+  Frame frame(next_frame_id_++, timestamp,
+              Features(std::move(keypoints), descriptors, depth, cam, &levels_));
   result.state = tracker_.track(std::move(frame), &result.stats);
   if (!settings_.threaded_mapping) mapper_.run_pending();
   if (tracker_.wants_reset()) {

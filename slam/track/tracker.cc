@@ -15,7 +15,10 @@ class ScopedTimer {
  public:
   explicit ScopedTimer(double* total) : total_(total), start_(std::chrono::steady_clock::now()) {}
   ~ScopedTimer() {
-    if (total_) *total_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+    if (total_)
+      *total_ +=
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_)
+              .count();
   }
 
  private:
@@ -47,7 +50,8 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
                                                    [](MapPoint* p) { return p != nullptr; }));
   } else {
     if (state_ == TrackingState::kOk || state_ == TrackingState::kRelocalized) {
-      if (has_velocity_ && frame.id > last_reloc_frame_ + 1) ok = track_motion_model(frame, local.matches);
+      if (has_velocity_ && frame.id > last_reloc_frame_ + 1)
+        ok = track_motion_model(frame, local.matches);
       if (!ok) ok = track_reference_keyframe(frame, local.matches);
     } else {
       ok = relocalize(frame, local.matches);
@@ -55,7 +59,8 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
     }
     frame.reference = reference_;
     if (ok) ok = track_local_map(frame, local.inliers, local.local_points);
-    state_ = ok ? (relocalized ? TrackingState::kRelocalized : TrackingState::kOk) : TrackingState::kLost;
+    state_ = ok ? (relocalized ? TrackingState::kRelocalized : TrackingState::kOk)
+                : TrackingState::kLost;
     if (ok) {
       velocity_ = frame.T_cw * last_.T_cw.inverse();
       has_velocity_ = last_.has_pose;
@@ -72,7 +77,8 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
     }
   }
   if (ok && frame.reference) {
-    trajectory_.push_back({frame.timestamp, frame.reference, frame.T_cw * frame.reference->T_cw.inverse(), state_});
+    trajectory_.push_back(
+        {frame.timestamp, frame.reference, frame.T_cw * frame.reference->T_cw.inverse(), state_});
   } else if (!trajectory_.empty() && trajectory_.back().reference) {
     // Lost: keep the last known pose (flagged), as ORB-SLAM2 does.
     TrajectoryEntry e = trajectory_.back();
@@ -82,8 +88,10 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
   } else {
     trajectory_.push_back({frame.timestamp, nullptr, Pose::Identity(), state_});
   }
-  if (ok) last_ = std::move(frame);
-  else last_.timestamp = frame.timestamp;
+  if (ok)
+    last_ = std::move(frame);
+  else
+    last_.timestamp = frame.timestamp;
   current_stats_ = nullptr;
   if (stats) *stats = local;
   return state_;
@@ -111,7 +119,8 @@ bool Tracker::initialize(Frame& frame) {
   for (size_t i = 0; i < frame.size(); ++i) {
     if (!frame.features.has_depth(i)) continue;
     const cv::KeyPoint& kp = frame.features.keypoints[i];
-    MapPoint* mp = map_.create_map_point(T_wc * frame.features.camera.unproject(kp.pt.x, kp.pt.y, frame.features.depth[i]), kf);
+    MapPoint* mp = map_.create_map_point(
+        T_wc * frame.features.camera.unproject(kp.pt.x, kp.pt.y, frame.features.depth[i]), kf);
     mp->add_observation(kf, i);
     kf->add_map_point(mp, i);
     mp->update_descriptor();
@@ -218,7 +227,8 @@ bool Tracker::relocalize(Frame& frame, int& matches) {
       for (KeyFrame* n : kf->covisibles(10))
         for (MapPoint* mp : n->map_points) {
           ProjectedPoint p;
-          if (mp && !mp->bad && project_into(*mp, frame.T_cw, frame.features, p)) projected.push_back(p);
+          if (mp && !mp->bad && project_into(*mp, frame.T_cw, frame.features, p))
+            projected.push_back(p);
         }
       match_local_points(frame, projected, 5.0f);
       good = timed_optimize(frame);
@@ -313,14 +323,16 @@ bool Tracker::track_local_map(Frame& frame, int& inliers, int& n_local) {
       if (mp->n_observations() > 0) ++inliers;
     }
   }
-  const int needed = frame.id < last_reloc_frame_ + params_.max_frames_between_kf ? params_.relocalisation_min_inliers
-                                                                                  : params_.local_map_min_inliers;
+  const int needed = frame.id < last_reloc_frame_ + params_.max_frames_between_kf
+                         ? params_.relocalisation_min_inliers
+                         : params_.local_map_min_inliers;
   return inliers >= needed;
 }
 
 bool Tracker::need_keyframe(const Frame& frame, int inliers) const {
   const int n_kfs = static_cast<int>(map_.n_keyframes());
-  if (frame.id < last_reloc_frame_ + params_.max_frames_between_kf && n_kfs > params_.max_frames_between_kf)
+  if (frame.id < last_reloc_frame_ + params_.max_frames_between_kf &&
+      n_kfs > params_.max_frames_between_kf)
     return false;
   const int min_obs = n_kfs <= 2 ? 2 : 3;
   const int ref_matches = reference_ ? reference_->tracked_map_points(min_obs) : 0;
@@ -330,8 +342,10 @@ bool Tracker::need_keyframe(const Frame& frame, int inliers) const {
   for (size_t i = 0; i < frame.size(); ++i) {
     const float z = frame.features.depth[i];
     if (z <= 0 || z >= close) continue;
-    if (frame.map_points[i] && !frame.outlier[i]) ++tracked_close;
-    else ++untracked_close;
+    if (frame.map_points[i] && !frame.outlier[i])
+      ++tracked_close;
+    else
+      ++untracked_close;
   }
   const bool need_close = tracked_close < 100 && untracked_close > 70;
   const double ref_ratio = n_kfs < 2 ? 0.4 : 0.75;
@@ -362,7 +376,8 @@ void Tracker::create_keyframe(Frame& frame) {
     const bool needs_point = !existing || existing->n_observations() < 1;
     if (needs_point) {
       const cv::KeyPoint& kp = frame.features.keypoints[i];
-      MapPoint* mp = map_.create_map_point(T_wc * frame.features.camera.unproject(kp.pt.x, kp.pt.y, z), kf);
+      MapPoint* mp =
+          map_.create_map_point(T_wc * frame.features.camera.unproject(kp.pt.x, kp.pt.y, z), kf);
       mp->add_observation(kf, i);
       kf->add_map_point(mp, i);
       mp->update_descriptor();

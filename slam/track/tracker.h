@@ -26,8 +26,8 @@ struct TrackerParams {
 };
 
 struct TrackingStats {
-  int matches = 0;        // after the first stage (motion model / reference / reloc)
-  int inliers = 0;        // after local-map tracking
+  int matches = 0;  // after the first stage (motion model / reference / reloc)
+  int inliers = 0;  // after local-map tracking
   int local_points = 0;
   bool new_keyframe = false;
   double match_ms = 0;     // all descriptor matching of the frame

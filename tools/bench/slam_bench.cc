@@ -4,25 +4,25 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <memory>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "common/error.h"
+#include "sim/pipeline/render_dataset.h"
+#include "sim/scenario/scenario_loader.h"
 #include "slam/detect/detector_config.h"
 #include "slam/detect/detector_factory.h"
 #include "slam/detect/sim_detector.h"
 #include "slam/io/settings.h"
-#include "slam/reject/rejection_filter.h"
 #include "slam/io/tum_sequence.h"
+#include "slam/reject/rejection_filter.h"
 #include "slam/system/system.h"
-#include "sim/pipeline/render_dataset.h"
-#include "sim/scenario/scenario_loader.h"
 
 namespace fs = std::filesystem;
 
@@ -63,10 +63,11 @@ int main(int argc, char** argv) {
   std::string rendered;
   try {
     if (dataset.empty()) {
-      depot::sim::Scenario s =
-          depot::sim::load_scenario(std::string(DEPOT_SOURCE_DIR) + "/scenarios/" + scenario + ".yaml");
+      depot::sim::Scenario s = depot::sim::load_scenario(std::string(DEPOT_SOURCE_DIR) +
+                                                         "/scenarios/" + scenario + ".yaml");
       depot::sim::RenderRequest r;
-      rendered = (fs::temp_directory_path() / ("depot_slam_bench_" + std::to_string(getpid()))).string();
+      rendered =
+          (fs::temp_directory_path() / ("depot_slam_bench_" + std::to_string(getpid()))).string();
       r.dataset.output = rendered;
       r.frames = frames;
       r.progress = false;
@@ -76,7 +77,8 @@ int main(int argc, char** argv) {
     }
     depot::slam::TumSequence sequence(dataset);
     depot::slam::SlamSettings settings;
-    if (!sequence.calibration_path().empty()) settings = depot::slam::load_settings(sequence.calibration_path());
+    if (!sequence.calibration_path().empty())
+      settings = depot::slam::load_settings(sequence.calibration_path());
     settings.threaded_mapping = !sync;
     sequence.set_depth_factor(settings.camera.depth_factor);
     const size_t n = std::min<size_t>(frames, sequence.size());
@@ -99,11 +101,13 @@ int main(int argc, char** argv) {
             detector = std::make_unique<depot::slam::SimDetector>(dataset);
           } else {
             detector = depot::slam::make_dnn_detector(depot::slam::load_detector_config(
-                src + (detector_type == "darknet" ? "/scenes/detectors/yolo_fastest.yaml" : "/scenes/detectors/fastestdet.yaml")));
+                src + (detector_type == "darknet" ? "/scenes/detectors/yolo_fastest.yaml"
+                                                  : "/scenes/detectors/fastestdet.yaml")));
           }
         }
-        auto classes = depot::slam::AprioriClasses::load(
-            src + (detector_type == "sim" ? "/scenes/apriori/depot.yaml" : "/scenes/apriori/coco.yaml"));
+        auto classes = depot::slam::AprioriClasses::load(src + (detector_type == "sim"
+                                                                    ? "/scenes/apriori/depot.yaml"
+                                                                    : "/scenes/apriori/coco.yaml"));
         filter = std::make_unique<depot::slam::RejectionFilter>(rmode, classes, detector.get());
       }
       depot::slam::System system(settings, filter.get());
@@ -140,32 +144,39 @@ int main(int argc, char** argv) {
     };
     std::printf("depot_slam_bench: %zu frames of %s, %s mapping, %d lost\n", n, dataset.c_str(),
                 sync ? "synchronous" : "threaded", base_run.lost);
-    std::printf("  %-34s %10s %10s %12s\n", "stage (mode orb)", "median ms", "p95 ms", "vs extract");
+    std::printf("  %-34s %10s %10s %12s\n", "stage (mode orb)", "median ms", "p95 ms",
+                "vs extract");
     row("ORB extraction (baseline)", base_run.extract);
     row("matching", base_run.match);
     row("pose optimisation", base_run.optimize);
     row("other tracking (local map, KF)", base_run.other);
     row("total per frame", base_run.total);
-    std::printf("  median tracking %.1f ms per frame (target < 25 ms at 640x480)\n", percentile(base_run.total, 0.5));
-    std::printf("  memory: RSS %.1f MB at start, %.1f MB after %zu frames (%zu keyframes), %.1f MB at the end (%zu "
-                "keyframes, %zu map points): %.3f MB per keyframe after the first tenth\n",
-                base_run.rss_start, base_run.rss_early, n / 10 + 1, base_run.kf_early, base_run.rss_end, base_run.kfs,
-                base_run.points,
-                base_run.kfs > base_run.kf_early
-                    ? (base_run.rss_end - base_run.rss_early) / static_cast<double>(base_run.kfs - base_run.kf_early)
-                    : 0.0);
+    std::printf("  median tracking %.1f ms per frame (target < 25 ms at 640x480)\n",
+                percentile(base_run.total, 0.5));
+    std::printf(
+        "  memory: RSS %.1f MB at start, %.1f MB after %zu frames (%zu keyframes), %.1f MB at the "
+        "end (%zu "
+        "keyframes, %zu map points): %.3f MB per keyframe after the first tenth\n",
+        base_run.rss_start, base_run.rss_early, n / 10 + 1, base_run.kf_early, base_run.rss_end,
+        base_run.kfs, base_run.points,
+        base_run.kfs > base_run.kf_early ? (base_run.rss_end - base_run.rss_early) /
+                                               static_cast<double>(base_run.kfs - base_run.kf_early)
+                                         : 0.0);
     if (mode != "orb") {
-      std::printf("  mode %s with the %s detector (%d lost):\n", mode.c_str(), detector_type.c_str(), run.lost);
+      std::printf("  mode %s with the %s detector (%d lost):\n", mode.c_str(),
+                  detector_type.c_str(), run.lost);
       row("rejection stage (after detection)", run.filter);
       row("detector (own thread)", run.detect);
       row("tracking waited for the detector", run.wait);
       row("total per frame", run.total);
       const double det = percentile(run.detect, 0.5), wait = percentile(run.wait, 0.5);
-      std::printf("  the detection thread hides %.0f %% of the detector's time; the rejection stage adds %.1f %% to "
-                  "plain tracking time (%.2f of %.2f ms)\n",
-                  det > 0 ? 100.0 * (1.0 - wait / det) : 100.0,
-                  100.0 * percentile(run.filter, 0.5) / percentile(base_run.total, 0.5), percentile(run.filter, 0.5),
-                  percentile(base_run.total, 0.5));
+      std::printf(
+          "  the detection thread hides %.0f %% of the detector's time; the rejection stage adds "
+          "%.1f %% to "
+          "plain tracking time (%.2f of %.2f ms)\n",
+          det > 0 ? 100.0 * (1.0 - wait / det) : 100.0,
+          100.0 * percentile(run.filter, 0.5) / percentile(base_run.total, 0.5),
+          percentile(run.filter, 0.5), percentile(base_run.total, 0.5));
     }
   } catch (const depot::Error& e) {
     std::fprintf(stderr, "depot_slam_bench: error: %s\n", e.what());

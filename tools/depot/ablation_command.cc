@@ -68,7 +68,8 @@ void run_ablation(const AblationArgs& a) {
   for (const auto& name : a.scenarios) {
     sim::Scenario scenario = sim::load_scenario(resolve_scenario(name));
     for (int seed = 1; seed <= a.seeds; ++seed) {
-      const std::string data = (fs::path(a.output) / "data" / (scenario.name + "_seed" + std::to_string(seed))).string();
+      const std::string data =
+          (fs::path(a.output) / "data" / (scenario.name + "_seed" + std::to_string(seed))).string();
       sim::RenderRequest r;
       r.dataset.output = data;
       r.dataset.overwrite = true;
@@ -76,7 +77,8 @@ void run_ablation(const AblationArgs& a) {
       r.seed = static_cast<uint64_t>(seed);
       r.width = a.width;
       r.progress = false;
-      std::fprintf(stderr, "ablation: %s seed %d: rendering %d frames\n", scenario.name.c_str(), seed, a.frames);
+      std::fprintf(stderr, "ablation: %s seed %d: rendering %d frames\n", scenario.name.c_str(),
+                   seed, a.frames);
       sim::render_dataset(scenario, r);
       const auto gt = read_tum_trajectory(data + "/groundtruth.txt");
       for (const auto& mode : a.modes) {
@@ -96,19 +98,22 @@ void run_ablation(const AblationArgs& a) {
         c.lost += s.lost;
         c.tracked += s.trajectory.size();
         c.frames += s.frames;
-        runs << scenario.name << "," << seed << "," << mode << "," << ate << "," << s.score.precision() << ","
-             << s.score.recall() << "," << s.lost << "," << s.trajectory.size() << "," << s.frames << "\n";
+        runs << scenario.name << "," << seed << "," << mode << "," << ate << ","
+             << s.score.precision() << "," << s.score.recall() << "," << s.lost << ","
+             << s.trajectory.size() << "," << s.frames << "\n";
         runs.flush();
-        std::fprintf(stderr, "ablation: %s seed %d %-8s ATE %.4f m  precision %.3f recall %.3f  lost %d\n",
-                     scenario.name.c_str(), seed, mode.c_str(), ate, s.score.precision(), s.score.recall(), s.lost);
+        std::fprintf(stderr,
+                     "ablation: %s seed %d %-8s ATE %.4f m  precision %.3f recall %.3f  lost %d\n",
+                     scenario.name.c_str(), seed, mode.c_str(), ate, s.score.precision(),
+                     s.score.recall(), s.lost);
       }
       if (!a.keep_data) fs::remove_all(data);
     }
   }
   // Markdown: Table 2 style.
   std::ostringstream md;
-  md << "# Ablation: ATE RMSE (m), mean ± std over " << a.seeds << " seeds, " << a.frames << " frames at "
-     << a.width << " px\n\n| scenario |";
+  md << "# Ablation: ATE RMSE (m), mean ± std over " << a.seeds << " seeds, " << a.frames
+     << " frames at " << a.width << " px\n\n| scenario |";
   for (const auto& m : a.modes) md << " " << m << " |";
   const bool has_full = std::count(a.modes.begin(), a.modes.end(), "full") &&
                         std::count(a.modes.begin(), a.modes.end(), "orb");
@@ -120,25 +125,30 @@ void run_ablation(const AblationArgs& a) {
     md << "| " << scenario << " |";
     for (const auto& m : a.modes) {
       char buf[64];
-      std::snprintf(buf, sizeof(buf), " %.4f ± %.4f |", mean(modes.at(m).ate), stddev(modes.at(m).ate));
+      std::snprintf(buf, sizeof(buf), " %.4f ± %.4f |", mean(modes.at(m).ate),
+                    stddev(modes.at(m).ate));
       md << buf;
     }
     if (has_full) {
       char buf[32];
-      std::snprintf(buf, sizeof(buf), " %.1f %% |", eval::improvement_percent(mean(modes.at("orb").ate),
-                                                                               mean(modes.at("full").ate)));
+      std::snprintf(
+          buf, sizeof(buf), " %.1f %% |",
+          eval::improvement_percent(mean(modes.at("orb").ate), mean(modes.at("full").ate)));
       md << buf;
     }
     md << "\n";
   }
   md << "\n## Rejection against ground truth (simulated detector at its default error level)\n\n"
-     << "| scenario | mode | precision | recall | lost frames | frames in trajectory |\n|---|---|---|---|---|---|\n";
+     << "| scenario | mode | precision | recall | lost frames | frames in trajectory "
+        "|\n|---|---|---|---|---|---|\n";
   for (const auto& [scenario, modes] : table)
     for (const auto& m : a.modes) {
       char buf[200];
-      std::snprintf(buf, sizeof(buf), "| %s | %s | %.3f ± %.3f | %.3f ± %.3f | %d | %zu of %zu |\n", scenario.c_str(),
-                    m.c_str(), mean(modes.at(m).precision), stddev(modes.at(m).precision), mean(modes.at(m).recall),
-                    stddev(modes.at(m).recall), modes.at(m).lost, modes.at(m).tracked, modes.at(m).frames);
+      std::snprintf(buf, sizeof(buf), "| %s | %s | %.3f ± %.3f | %.3f ± %.3f | %d | %zu of %zu |\n",
+                    scenario.c_str(), m.c_str(), mean(modes.at(m).precision),
+                    stddev(modes.at(m).precision), mean(modes.at(m).recall),
+                    stddev(modes.at(m).recall), modes.at(m).lost, modes.at(m).tracked,
+                    modes.at(m).frames);
       md << buf;
     }
   write_text_file_atomic((fs::path(a.output) / "ablation.md").string(), md.str());
@@ -149,7 +159,8 @@ void run_ablation(const AblationArgs& a) {
 
 void register_ablation_command(CLI::App& slam) {
   auto args = std::make_shared<AblationArgs>();
-  CLI::App* cmd = slam.add_subcommand("ablation", "The paper's ablation (Table 2) on simulated scenarios");
+  CLI::App* cmd =
+      slam.add_subcommand("ablation", "The paper's ablation (Table 2) on simulated scenarios");
   cmd->add_option("scenarios", args->scenarios, "Scenario names or YAML files")->required();
   cmd->add_option("-o,--output", args->output, "Output folder (ablation.md, runs.csv)")->required();
   cmd->add_option("--seeds", args->seeds, "Seeds per scenario")->check(CLI::Range(1, 100));

@@ -104,8 +104,10 @@ void register_sim_commands(CLI::App& app) {
   render->add_flag("--yolo", args->yolo,
                    "Also export a YOLO training set (yolo/images, yolo/labels, data.yaml)");
   render->add_option("--writers", args->writers, "PNG writer threads")->check(CLI::Range(1, 32));
-  render->add_option("--png-level", args->png_level,
-                     "zlib level 0-9 for all images (default: colour stored, depth and labels level 1)")
+  render
+      ->add_option(
+          "--png-level", args->png_level,
+          "zlib level 0-9 for all images (default: colour stored, depth and labels level 1)")
       ->check(CLI::Range(0, 9));
   render->add_flag("-q,--quiet", args->quiet, "No progress bar");
   render->callback([args, render] { run_render(*args, *render); });

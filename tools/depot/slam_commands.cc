@@ -33,22 +33,29 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
   check_output_folder(a.output);
   if (cmd.count("--frames")) a.options.frames = a.frames;
   if (!a.options.quiet)
-    std::fprintf(stderr, "depot slam run: %s, mode %s\n", a.options.dataset.c_str(), a.options.mode.c_str());
+    std::fprintf(stderr, "depot slam run: %s, mode %s\n", a.options.dataset.c_str(),
+                 a.options.mode.c_str());
   RunSummary s = run_sequence(a.options);
-  write_tum_trajectory(a.output, s.trajectory, "depot-slam trajectory (" + a.options.mode + ") of " + a.options.dataset);
-  if (!a.keyframes.empty()) write_tum_trajectory(a.keyframes, s.keyframes_trajectory, "depot-slam keyframes");
+  write_tum_trajectory(a.output, s.trajectory,
+                       "depot-slam trajectory (" + a.options.mode + ") of " + a.options.dataset);
+  if (!a.keyframes.empty())
+    write_tum_trajectory(a.keyframes, s.keyframes_trajectory, "depot-slam keyframes");
   std::printf(
-      "tracked %zu frames (%d lost, %d relocalised) in mode %s: %zu keyframes, %zu map points; per frame median %.1f "
+      "tracked %zu frames (%d lost, %d relocalised) in mode %s: %zu keyframes, %zu map points; per "
+      "frame median %.1f "
       "ms, p95 %.1f ms (extraction %.1f, tracking %.1f",
-      s.frames, s.lost, s.relocalized, a.options.mode.c_str(), s.keyframes, s.map_points, s.median_ms, s.p95_ms,
-      s.extract_ms, s.track_ms);
+      s.frames, s.lost, s.relocalized, a.options.mode.c_str(), s.keyframes, s.map_points,
+      s.median_ms, s.p95_ms, s.extract_ms, s.track_ms);
   if (a.options.mode != "orb")
-    std::printf(", rejection %.1f incl. flow %.1f, waited %.1f for the %s detector taking %.1f", s.filter_ms,
-                s.flow_ms, s.wait_ms, s.detector_name.empty() ? "(no)" : s.detector_name.c_str(), s.detect_ms);
+    std::printf(", rejection %.1f incl. flow %.1f, waited %.1f for the %s detector taking %.1f",
+                s.filter_ms, s.flow_ms, s.wait_ms,
+                s.detector_name.empty() ? "(no)" : s.detector_name.c_str(), s.detect_ms);
   std::printf("); wrote %s\n", a.output.c_str());
   if (s.scored && a.options.mode != "orb") {
-    std::printf("rejection vs ground truth: precision %.3f recall %.3f (%ld of %ld static points thrown away)\n",
-                s.score.precision(), s.score.recall(), s.score.false_positive, s.score.static_points());
+    std::printf(
+        "rejection vs ground truth: precision %.3f recall %.3f (%ld of %ld static points thrown "
+        "away)\n",
+        s.score.precision(), s.score.recall(), s.score.false_positive, s.score.static_points());
   }
 }
 
@@ -57,15 +64,20 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
 void add_rejection_options(CLI::App* cmd, RunOptions& o) {
   cmd->add_option("--mode", o.mode, "Rejection mode (the paper's ablation)")
       ->check(CLI::IsMember({"orb", "orb+yolo", "orb+lk", "full"}));
-  cmd->add_option("--detector", o.detector,
-                  "Detector: sim (simulated datasets), darknet (Yolo-Fastest), fastestdet, yolov5, file");
-  cmd->add_option("--detector-config", o.detector_config, "Detector YAML (dnn models, or the simulated detector)");
+  cmd->add_option(
+      "--detector", o.detector,
+      "Detector: sim (simulated datasets), darknet (Yolo-Fastest), fastestdet, yolov5, file");
+  cmd->add_option("--detector-config", o.detector_config,
+                  "Detector YAML (dnn models, or the simulated detector)");
   cmd->add_option("--detections", o.detections, "Detections file for --detector file");
-  cmd->add_option("--classes", o.classes, "A-priori class table YAML (default: scenes/apriori/depot|coco.yaml)");
+  cmd->add_option("--classes", o.classes,
+                  "A-priori class table YAML (default: scenes/apriori/depot|coco.yaml)");
   cmd->add_option("--detector-seed", o.detector_seed, "Seed of the simulated detector's errors");
-  cmd->add_option("--settings", o.settings, "Settings YAML (default: the dataset's calibration.yaml)");
+  cmd->add_option("--settings", o.settings,
+                  "Settings YAML (default: the dataset's calibration.yaml)");
   cmd->add_option("--background-margin", o.background_depth_margin,
-                  "Our extension of full: points this far (m) behind a dynamic box's object go to the flow test "
+                  "Our extension of full: points this far (m) behind a dynamic box's object go to "
+                  "the flow test "
                   "(0 = the paper exactly)")
       ->check(CLI::Range(0.0, 10.0));
   cmd->add_flag("--sync", o.sync, "Run local mapping in the tracking thread (reproducible)");
@@ -75,13 +87,18 @@ void register_slam_commands(CLI::App& app) {
   CLI::App* slam = app.add_subcommand("slam", "Run the RGB-D SLAM system");
   slam->require_subcommand(1);
   auto args = std::make_shared<RunArgs>();
-  CLI::App* run = slam->add_subcommand("run", "Track a TUM RGB-D folder and write the trajectory (TUM format)");
-  run->add_option("dataset", args->options.dataset, "TUM RGB-D folder (associations.txt or rgb.txt + depth.txt)")
+  CLI::App* run =
+      slam->add_subcommand("run", "Track a TUM RGB-D folder and write the trajectory (TUM format)");
+  run->add_option("dataset", args->options.dataset,
+                  "TUM RGB-D folder (associations.txt or rgb.txt + depth.txt)")
       ->required();
-  run->add_option("-o,--output", args->output, "Trajectory file (every frame, camera-to-world)")->required();
+  run->add_option("-o,--output", args->output, "Trajectory file (every frame, camera-to-world)")
+      ->required();
   run->add_option("--keyframes", args->keyframes, "Also write the keyframe trajectory here");
-  run->add_option("--frames", args->frames, "Only the first N frames")->check(CLI::Range(1, 10000000));
-  run->add_option("--stats", args->options.stats_csv, "Per-frame statistics CSV (|Z| |Q| |Q->P| |P|, flow, times)");
+  run->add_option("--frames", args->frames, "Only the first N frames")
+      ->check(CLI::Range(1, 10000000));
+  run->add_option("--stats", args->options.stats_csv,
+                  "Per-frame statistics CSV (|Z| |Q| |Q->P| |P|, flow, times)");
   run->add_flag("-q,--quiet", args->options.quiet, "No progress line");
   add_rejection_options(run, args->options);
   run->callback([args, run] { run_slam(*args, *run); });

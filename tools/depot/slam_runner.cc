@@ -35,7 +35,9 @@ double percentile(std::vector<double> v, double p) {
   return v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
 }
 
-std::string shipped(const std::string& relative) { return std::string(DEPOT_SOURCE_DIR) + "/" + relative; }
+std::string shipped(const std::string& relative) {
+  return std::string(DEPOT_SOURCE_DIR) + "/" + relative;
+}
 
 std::unique_ptr<slam::Detector> make_detector(const RunOptions& o, const std::string& type) {
   if (type == "sim") {
@@ -50,10 +52,11 @@ std::unique_ptr<slam::Detector> make_detector(const RunOptions& o, const std::st
   }
   const auto& dnn = slam::dnn_detector_types();
   if (std::find(dnn.begin(), dnn.end(), type) == dnn.end())
-    fail("--detector", "unknown detector '" + type + "' (expected sim, file, yolov5, darknet, fastestdet)");
+    fail("--detector",
+         "unknown detector '" + type + "' (expected sim, file, yolov5, darknet, fastestdet)");
   std::string config = o.detector_config;
   if (config.empty()) {
-    config = type == "darknet" ? shipped("scenes/detectors/yolo_fastest.yaml")
+    config = type == "darknet"      ? shipped("scenes/detectors/yolo_fastest.yaml")
              : type == "fastestdet" ? shipped("scenes/detectors/fastestdet.yaml")
                                     : shipped("scenes/detectors/yolov5s.yaml");
   }
@@ -91,8 +94,9 @@ RunSummary run_sequence(const RunOptions& o) {
       summary.detector_name = detector->name();
     }
     const std::string table_path =
-        !o.classes.empty() ? o.classes
-                           : shipped(type == "sim" ? "scenes/apriori/depot.yaml" : "scenes/apriori/coco.yaml");
+        !o.classes.empty()
+            ? o.classes
+            : shipped(type == "sim" ? "scenes/apriori/depot.yaml" : "scenes/apriori/coco.yaml");
     slam::AprioriClasses classes = slam::AprioriClasses::load(table_path);
     if (detector && !detector->class_names().empty())
       classes.check_against(detector->class_names(), table_path, detector->name());
@@ -108,8 +112,10 @@ RunSummary run_sequence(const RunOptions& o) {
   if (!o.stats_csv.empty()) {
     stats.open(o.stats_csv + ".tmp");
     if (!stats) fail(o.stats_csv, "cannot write statistics file");
-    stats << "frame,timestamp,state,keypoints,kept,Z,Q,Q_to_P,P,detections,flow_u,flow_v,z,wait_ms,detect_ms,flow_ms,"
-             "filter_ms,total_ms,true_positive,false_positive,false_negative,false_positive_z,false_positive_q\n";
+    stats << "frame,timestamp,state,keypoints,kept,Z,Q,Q_to_P,P,detections,flow_u,flow_v,z,wait_ms,"
+             "detect_ms,flow_ms,"
+             "filter_ms,total_ms,true_positive,false_positive,false_negative,false_positive_z,"
+             "false_positive_q\n";
   }
 
   slam::System system(settings, filter.get());
@@ -154,16 +160,19 @@ RunSummary run_sequence(const RunOptions& o) {
     if (stats.is_open()) {
       char line[512];
       std::snprintf(line, sizeof(line),
-                    "%zu,%.6f,%s,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%.2f,%.2f,%ld,%ld,%ld,%ld,%ld\n", i, t,
-                    slam::tracking_state_name(r.state), rs.total, rs.kept, rs.z, rs.q, rs.q_to_p, rs.p, rs.detections,
-                    rs.mean_flow.x, rs.mean_flow.y, rs.z_threshold, rs.wait_ms, rs.detect_ms, rs.flow_ms, rs.filter_ms,
-                    r.timing.total_ms, frame_score.true_positive, frame_score.false_positive,
+                    "%zu,%.6f,%s,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%.2f,%.2f,%ld,%"
+                    "ld,%ld,%ld,%ld\n",
+                    i, t, slam::tracking_state_name(r.state), rs.total, rs.kept, rs.z, rs.q,
+                    rs.q_to_p, rs.p, rs.detections, rs.mean_flow.x, rs.mean_flow.y, rs.z_threshold,
+                    rs.wait_ms, rs.detect_ms, rs.flow_ms, rs.filter_ms, r.timing.total_ms,
+                    frame_score.true_positive, frame_score.false_positive,
                     frame_score.false_negative, fp_z, fp_q);
       stats << line;
     }
     char detail[160];
     std::snprintf(detail, sizeof(detail), "frame %zu %s features %d/%d inliers %d %.1f ms", i,
-                  slam::tracking_state_name(r.state), r.kept, r.keypoints, r.stats.inliers, r.timing.total_ms);
+                  slam::tracking_state_name(r.state), r.kept, r.keypoints, r.stats.inliers,
+                  r.timing.total_ms);
     progress.update(i + 1, detail);
   }
   progress.finish();
@@ -171,7 +180,8 @@ RunSummary run_sequence(const RunOptions& o) {
   summary.frames = n;
   summary.trajectory = system.trajectory();
   summary.keyframes_trajectory = system.keyframe_trajectory();
-  if (summary.trajectory.empty()) fail(o.dataset, "tracking never initialised (too few keypoints with depth?)");
+  if (summary.trajectory.empty())
+    fail(o.dataset, "tracking never initialised (too few keypoints with depth?)");
   summary.keyframes = system.n_keyframes();
   summary.map_points = system.n_map_points();
   summary.median_ms = percentile(total, 0.5);

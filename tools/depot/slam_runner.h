@@ -15,17 +15,18 @@ namespace depot::cli {
 
 struct RunOptions {
   std::string dataset;
-  std::string settings;        // optional settings YAML
-  std::string mode = "orb";    // orb | orb+yolo | orb+lk | full
-  std::string detector = "";   // sim | darknet | fastestdet | yolov5 | file ("" = sim on simulated data)
-  std::string detector_config; // YAML for dnn detectors / the simulated detector
-  std::string detections;      // detections file for --detector file
-  std::string classes;         // a-priori class table (default by detector)
+  std::string settings;      // optional settings YAML
+  std::string mode = "orb";  // orb | orb+yolo | orb+lk | full
+  std::string detector =
+      "";  // sim | darknet | fastestdet | yolov5 | file ("" = sim on simulated data)
+  std::string detector_config;  // YAML for dnn detectors / the simulated detector
+  std::string detections;       // detections file for --detector file
+  std::string classes;          // a-priori class table (default by detector)
   uint64_t detector_seed = 1;
   std::optional<size_t> frames;
   bool sync = false;
   bool quiet = false;
-  std::string stats_csv;       // per-frame statistics
+  std::string stats_csv;                 // per-frame statistics
   float background_depth_margin = 0.0f;  // our extension of `full` (0 = paper)
 };
 
