@@ -16,13 +16,11 @@
 #include "common/error.h"
 #include "sim/pipeline/render_dataset.h"
 #include "sim/scenario/scenario_loader.h"
-#include "slam/detect/detector_config.h"
-#include "slam/detect/detector_factory.h"
-#include "slam/detect/sim_detector.h"
 #include "slam/io/settings.h"
 #include "slam/io/tum_sequence.h"
 #include "slam/reject/rejection_filter.h"
 #include "slam/system/system.h"
+#include "tools/depot/slam_runner.h"
 
 namespace fs = std::filesystem;
 
@@ -53,8 +51,8 @@ int main(int argc, char** argv) {
   std::string detector_type = "sim";
   app.add_option("--mode", mode, "Rejection mode measured against plain orb in the same run")
       ->check(CLI::IsMember({"orb", "orb+yolo", "orb+lk", "full"}));
-  app.add_option("--detector", detector_type, "sim | darknet | fastestdet")
-      ->check(CLI::IsMember({"sim", "darknet", "fastestdet"}));
+  app.add_option("--detector", detector_type, "sim | darknet | fastestdet | yolov5")
+      ->check(CLI::IsMember({"sim", "darknet", "fastestdet", "yolov5"}));
   app.add_option("--dataset", dataset, "TUM folder to run (default: render --scenario first)");
   app.add_option("--scenario", scenario, "Shipped scenario to render when no dataset is given");
   app.add_option("--frames", frames, "Frames")->check(CLI::Range(10, 1000000));
@@ -91,26 +89,13 @@ int main(int argc, char** argv) {
     };
     auto measure = [&](const std::string& run_mode) {
       Measured m;
-      std::unique_ptr<depot::slam::Detector> detector;
-      std::unique_ptr<depot::slam::RejectionFilter> filter;
-      const auto rmode = depot::slam::parse_rejection_mode(run_mode);
-      if (rmode != depot::slam::RejectionMode::kOrb) {
-        const std::string src = DEPOT_SOURCE_DIR;
-        if (depot::slam::mode_uses_detector(rmode)) {
-          if (detector_type == "sim") {
-            detector = std::make_unique<depot::slam::SimDetector>(dataset);
-          } else {
-            detector = depot::slam::make_dnn_detector(depot::slam::load_detector_config(
-                src + (detector_type == "darknet" ? "/scenes/detectors/yolo_fastest.yaml"
-                                                  : "/scenes/detectors/fastestdet.yaml")));
-          }
-        }
-        auto classes = depot::slam::AprioriClasses::load(src + (detector_type == "sim"
-                                                                    ? "/scenes/apriori/depot.yaml"
-                                                                    : "/scenes/apriori/coco.yaml"));
-        filter = std::make_unique<depot::slam::RejectionFilter>(rmode, classes, detector.get());
-      }
-      depot::slam::System system(settings, filter.get());
+      depot::cli::RunOptions options;
+      options.dataset = dataset;
+      options.mode = run_mode;
+      options.detector = detector_type;
+      depot::cli::RejectionSetup rejection = depot::cli::make_rejection(options);
+      depot::slam::RejectionFilter* filter = rejection.filter.get();
+      depot::slam::System system(settings, filter);
       m.rss_start = rss_mb();
       cv::Mat bgr, depth;
       for (size_t i = 0; i < n; ++i) {

@@ -65,6 +65,28 @@ std::unique_ptr<slam::Detector> make_detector(const RunOptions& o, const std::st
 
 }  // namespace
 
+RejectionSetup make_rejection(const RunOptions& o) {
+  RejectionSetup setup;
+  const slam::RejectionMode mode = slam::parse_rejection_mode(o.mode);
+  if (mode == slam::RejectionMode::kOrb) return setup;
+  const std::string type = !o.detector.empty()
+                               ? o.detector
+                               : (eval::MotionTruth::available(o.dataset) ? "sim" : "darknet");
+  if (slam::mode_uses_detector(mode)) setup.detector = make_detector(o, type);
+  const std::string table_path =
+      !o.classes.empty()
+          ? o.classes
+          : shipped(type == "sim" ? "scenes/apriori/depot.yaml" : "scenes/apriori/coco.yaml");
+  slam::AprioriClasses classes = slam::AprioriClasses::load(table_path);
+  if (setup.detector && !setup.detector->class_names().empty())
+    classes.check_against(setup.detector->class_names(), table_path, setup.detector->name());
+  slam::RejectionParams params;
+  params.background_depth_margin = o.background_depth_margin;
+  setup.filter =
+      std::make_unique<slam::RejectionFilter>(mode, classes, setup.detector.get(), params);
+  return setup;
+}
+
 RunSummary run_sequence(const RunOptions& o) {
   RunSummary summary;
   slam::TumSequence sequence(o.dataset);
@@ -83,27 +105,10 @@ RunSummary run_sequence(const RunOptions& o) {
   const size_t n = o.frames ? std::min(*o.frames, sequence.size()) : sequence.size();
 
   // Rejection: mode, detector and class table, all checked before any work.
-  const slam::RejectionMode mode = slam::parse_rejection_mode(o.mode);
   const bool simulated = eval::MotionTruth::available(o.dataset);
-  std::unique_ptr<slam::Detector> detector;
-  std::unique_ptr<slam::RejectionFilter> filter;
-  if (mode != slam::RejectionMode::kOrb) {
-    std::string type = o.detector.empty() ? (simulated ? "sim" : "darknet") : o.detector;
-    if (slam::mode_uses_detector(mode)) {
-      detector = make_detector(o, type);
-      summary.detector_name = detector->name();
-    }
-    const std::string table_path =
-        !o.classes.empty()
-            ? o.classes
-            : shipped(type == "sim" ? "scenes/apriori/depot.yaml" : "scenes/apriori/coco.yaml");
-    slam::AprioriClasses classes = slam::AprioriClasses::load(table_path);
-    if (detector && !detector->class_names().empty())
-      classes.check_against(detector->class_names(), table_path, detector->name());
-    slam::RejectionParams params;
-    params.background_depth_margin = o.background_depth_margin;
-    filter = std::make_unique<slam::RejectionFilter>(mode, classes, detector.get(), params);
-  }
+  RejectionSetup rejection = make_rejection(o);
+  slam::RejectionFilter* filter = rejection.filter.get();
+  if (rejection.detector) summary.detector_name = rejection.detector->name();
   std::unique_ptr<eval::MotionTruth> truth;
   if (simulated) truth = std::make_unique<eval::MotionTruth>(o.dataset);
   summary.scored = truth != nullptr;
@@ -118,7 +123,7 @@ RunSummary run_sequence(const RunOptions& o) {
              "false_positive_q\n";
   }
 
-  slam::System system(settings, filter.get());
+  slam::System system(settings, filter);
   std::vector<double> total, extract, track, filter_ms, wait_ms, detect_ms, flow_ms;
   Progress progress("slam " + o.mode, n, !o.quiet);
   cv::Mat bgr, depth;

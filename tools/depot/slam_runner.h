@@ -3,6 +3,7 @@
 // chosen detector, and collects what `depot slam run` and the ablation
 // report: trajectory, timings, rejection statistics and (for simulated
 // datasets) rejection precision/recall against ground truth.
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -44,6 +45,15 @@ struct RunSummary {
   std::string settings_source;
   std::string detector_name;
 };
+
+// The detector and the rejection filter of a run (both empty for `orb`), the
+// a-priori class table checked against the detector's classes. The detector
+// defaults to `sim` on simulated datasets and `darknet` otherwise.
+struct RejectionSetup {
+  std::unique_ptr<slam::Detector> detector;
+  std::unique_ptr<slam::RejectionFilter> filter;
+};
+RejectionSetup make_rejection(const RunOptions& options);
 
 RunSummary run_sequence(const RunOptions& options);
 
