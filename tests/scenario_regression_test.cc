@@ -1,0 +1,48 @@
+// Scenario regression tests (label `scenario`): short versions of the
+// shipped scenarios against the reviewed bounds in
+// scenarios/regression_bounds.yaml.
+#include <yaml-cpp/yaml.h>
+
+#include <gtest/gtest.h>
+
+#include "eval/improvement.h"
+#include "tests/support/render_helpers.h"
+#include "tests/support/slam_helpers.h"
+
+namespace depot::test {
+namespace {
+
+const std::string kBounds = std::string(DEPOT_SOURCE_DIR) + "/scenarios/regression_bounds.yaml";
+
+class ScenarioRegression : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ScenarioRegression, MeetsItsBounds) {
+  const YAML::Node root = YAML::LoadFile(kBounds);
+  const YAML::Node b = root["scenarios"][GetParam()];
+  ASSERT_TRUE(b) << GetParam() << " has no bounds in " << kBounds;
+  const int frames = root["frames"].as<int>();
+  std::string data = render_small({GetParam(), frames, 640, false});
+  SlamOutcome full = run_slam_mode(data, slam::RejectionMode::kFull, false);
+  SlamOutcome orb = run_slam_mode(data, slam::RejectionMode::kOrb, true);
+  const double rho = eval::improvement_percent(orb.ate_rmse, full.ate_rmse);
+  std::printf(
+      "%s (%d frames): orb ATE %.4f m, full ATE %.4f m (%.1f %%), precision %.3f recall %.3f, lost "
+      "%d\n",
+      GetParam().c_str(), frames, orb.ate_rmse, full.ate_rmse, rho, full.score.precision(),
+      full.score.recall(), full.lost);
+  EXPECT_LT(full.ate_rmse, b["full_ate_max"].as<double>()) << "full ATE RMSE";
+  if (b["improvement_min"]) {
+    EXPECT_GT(rho, b["improvement_min"].as<double>()) << "Eq. 9 improvement of full";
+  }
+  EXPECT_GT(full.score.recall(), b["recall_min"].as<double>()) << "rejection recall";
+  EXPECT_GT(full.score.precision(), b["precision_min"].as<double>()) << "rejection precision";
+  EXPECT_LE(full.lost, b["max_lost"].as<int>()) << "lost frames";
+}
+
+INSTANTIATE_TEST_SUITE_P(Shipped, ScenarioRegression,
+                         ::testing::Values("depot_walking_xyz", "depot_walking_halfsphere",
+                                           "depot_walking_static", "depot_sitting_static"),
+                         [](const auto& info) { return info.param; });
+
+}  // namespace
+}  // namespace depot::test

@@ -1,0 +1,22 @@
+#pragma once
+// Runs the real SLAM system over a rendered dataset in one rejection mode
+// and scores it against the simulator's ground truth.
+#include <string>
+
+#include "eval/motion_truth.h"
+#include "slam/reject/rejection_filter.h"
+
+namespace depot::test {
+
+struct SlamOutcome {
+  double ate_rmse = 0;
+  eval::RejectionScore score;
+  int lost = 0;
+  size_t trajectory_size = 0;
+};
+
+// The simulated detector at its default error level and the depot class
+// table; `threaded` picks the mapping thread (false = reproducible).
+SlamOutcome run_slam_mode(const std::string& dataset, slam::RejectionMode mode, bool threaded);
+
+}  // namespace depot::test
