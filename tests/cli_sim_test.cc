@@ -101,6 +101,24 @@ TEST(CliSim, EglRendersTheSameBytesAsOsMesa) {
   EXPECT_EQ(compare_trees(a, b), "");
 }
 
+std::string file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+TEST(CliSim, TruthExportMatchesTheRenderedDatasetWithoutImages) {
+  std::string rendered = temp_path("rendered"), truth = temp_path("truth");
+  ASSERT_EQ(depot("sim render depot_walking_xyz --frames 40 --width 64 -q -o " + rendered).code, 0);
+  DepotResult r = depot("sim truth depot_walking_xyz --frames 40 -q -o " + truth);
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* f : {"groundtruth.txt", "object_poses.txt", "objects.json"})
+    EXPECT_EQ(file_text(truth + "/" + f), file_text(rendered + "/" + f)) << f;
+  EXPECT_FALSE(fs::exists(truth + "/rgb"));
+  EXPECT_TRUE(fs::exists(truth + "/timestamps.txt"));
+  // Bad input is rejected the same way as for render.
+  EXPECT_NE(depot("sim truth nonexistent_scenario -q -o " + temp_path("x")).code, 0);
+}
+
 TEST(CliSim, PreviewWritesAContactSheet) {
   std::string data = temp_path("preview_data");
   ASSERT_EQ(depot("sim render depot_sitting_static --frames 4 --width 160 -q -o " + data).code, 0);

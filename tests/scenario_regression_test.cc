@@ -1,6 +1,6 @@
 // Scenario regression tests (label `scenario`): short versions of the
 // shipped scenarios against the reviewed bounds in
-// scenarios/regression_bounds.yaml.
+// scenarios/regression/bounds.yaml.
 #include <yaml-cpp/yaml.h>
 
 #include <gtest/gtest.h>
@@ -12,7 +12,7 @@
 namespace depot::test {
 namespace {
 
-const std::string kBounds = std::string(DEPOT_SOURCE_DIR) + "/scenarios/regression_bounds.yaml";
+const std::string kBounds = std::string(DEPOT_SOURCE_DIR) + "/scenarios/regression/bounds.yaml";
 
 class ScenarioRegression : public ::testing::TestWithParam<std::string> {};
 

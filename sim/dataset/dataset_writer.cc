@@ -13,6 +13,7 @@
 #include "common/tum_io.h"
 #include "sim/dataset/boxes.h"
 #include "sim/dataset/png_writer.h"
+#include "sim/dataset/truth_files.h"
 #include "sim/sensor/kinect_model.h"
 
 namespace fs = std::filesystem;
@@ -38,14 +39,6 @@ void write_png(const std::string& path, const cv::Mat& img, PngKind kind, int co
   bytes += buf.size();
 }
 
-nlohmann::json pose_json(const Pose& p) {
-  Eigen::Quaterniond q(p.linear());
-  q.normalize();
-  if (q.w() < 0) q.coeffs() *= -1;
-  const auto& t = p.translation();
-  return {{"t", {t.x(), t.y(), t.z()}}, {"q_xyzw", {q.x(), q.y(), q.z(), q.w()}}};
-}
-
 }  // namespace
 
 DatasetWriter::DatasetWriter(const DatasetOptions& options, const Scenario& scenario,
@@ -66,10 +59,7 @@ DatasetWriter::DatasetWriter(const DatasetOptions& options, const Scenario& scen
   gt_txt_ = "# ground truth trajectory (camera-to-world)\n" + header +
             "# timestamp tx ty tz qx qy qz qw\n";
   assoc_txt_.clear();
-  poses_txt_ =
-      "# per-frame poses of pushables and actors (dataset frame); moving = moved >1 mm or >0.1 "
-      "deg\n" +
-      header + "# timestamp id tx ty tz qx qy qz qw moving\n";
+  poses_txt_ = object_poses_header() + header + "# timestamp id tx ty tz qx qy qz qw moving\n";
   boxes_txt_ = "# ground-truth boxes of visible detectable instances, pixels, x2/y2 exclusive\n" +
                header + "# timestamp id class x1 y1 x2 y2 visible_pixels moving\n";
   for (int i = 0; i < options_.writer_threads; ++i) threads_.emplace_back([this] { worker(); });
@@ -100,13 +90,8 @@ void DatasetWriter::add(RenderedFrame frame, const FrameTruth& truth) {
   labels_txt_ += rs + " labels/" + rs + ".png\n";
   gt_txt_ += format_tum_pose({truth.rgb_timestamp, truth.camera}) + "\n";
   std::vector<bool> moving(instances_.size() + 1, false);
-  for (const ObjectState& s : truth.objects) {
-    moving[s.id] = s.moving;
-    std::string line = format_tum_pose({truth.rgb_timestamp, s.pose});
-    // "t x y z qx qy qz qw" -> insert the id after the timestamp.
-    line.insert(line.find(' '), " " + std::to_string(s.id));
-    poses_txt_ += line + (s.moving ? " 1\n" : " 0\n");
-  }
+  for (const ObjectState& s : truth.objects) moving[s.id] = s.moving;
+  poses_txt_ += object_pose_lines(truth);
   // Boxes are cheap: compute them here, in frame order.
   std::string yolo;
   for (const InstanceBox& b : instance_boxes(frame.instance, options_.min_box_pixels)) {
@@ -213,22 +198,7 @@ void DatasetWriter::write_text_files() {
       s.max_depth, s.ideal ? "ideal" : "kinect", s.baseline);
   write("calibration.yaml", calib);
 
-  nlohmann::json objects = nlohmann::json::array();
-  for (const Instance& inst : instances_) {
-    objects.push_back(
-        {{"id", inst.id},
-         {"name", inst.name},
-         {"class", inst.class_name},
-         {"category", category_name(inst.category)},
-         {"kind", instance_kind_name(inst.kind)},
-         {"yolo_class", classes_.yolo_index(inst.class_name)},
-         {"pose", pose_json(inst.pose)},
-         {"extent",
-          {{"min", {inst.extent.min().x(), inst.extent.min().y(), inst.extent.min().z()}},
-           {"max", {inst.extent.max().x(), inst.extent.max().y(), inst.extent.max().z()}}}}});
-  }
-  nlohmann::json doc = {{"scenario", scenario_.name}, {"instances", objects}};
-  write("objects.json", doc.dump(1) + "\n");
+  write("objects.json", objects_json(scenario_.name, instances_, classes_));
   nlohmann::json info = {{"generator", "depot-slam simulator"},
                          {"scenario", scenario_.name},
                          {"description", scenario_.description},

@@ -31,15 +31,16 @@ std::vector<std::pair<double, double>> frame_timestamps(const Scenario& s) {
   return out;
 }
 
-SimulatedSequence::SimulatedSequence(const Scenario& scenario, GlBackend backend)
+SimulatedSequence::SimulatedSequence(const Scenario& scenario, GlBackend backend, bool render)
     : scenario_(scenario), classes_(ClassTable::load(scenario.classes_path)) {
   stamps_ = frame_timestamps(scenario_);
   if (stamps_.empty()) fail(scenario_.source_path, "no frames to render");
   SceneLayout layout = load_scene_layout(scenario_.scene_path);
   world_ = std::make_unique<World>(build_scene(layout, classes_, scenario_));
   motion_ = std::make_unique<CameraMotion>(scenario_.motion, scenario_.seed, stamps_.front().first);
-  renderer_ = std::make_unique<Renderer>(world_->model(), world_->camera_id(), scenario_.camera,
-                                         backend, world_->geom_instances());
+  if (render)
+    renderer_ = std::make_unique<Renderer>(world_->model(), world_->camera_id(), scenario_.camera,
+                                           backend, world_->geom_instances());
   for (const Instance& inst : world_->instances())
     if (inst.kind == InstanceKind::kPushable || inst.kind == InstanceKind::kActor)
       tracked_.push_back(&inst);
@@ -49,6 +50,15 @@ SimulatedSequence::SimulatedSequence(const Scenario& scenario, GlBackend backend
 }
 
 bool SimulatedSequence::next(RenderedFrame& frame, FrameTruth& truth, SequenceTimings* timings) {
+  if (!renderer_) fail(scenario_.name, "sequence was created without rendering");
+  return advance(&frame, truth, timings);
+}
+
+bool SimulatedSequence::next_truth(FrameTruth& truth) {
+  return advance(nullptr, truth, nullptr);
+}
+
+bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, SequenceTimings* timings) {
   if (next_ >= frame_count()) return false;
   const auto [t_rgb, t_depth] = stamps_[next_];
   // The world runs one frame period ahead of the first timestamp, so frame 0
@@ -61,7 +71,7 @@ bool SimulatedSequence::next(RenderedFrame& frame, FrameTruth& truth, SequenceTi
   if (timings)
     timings->physics_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  renderer_->render(world_->data(), frame, timings ? &timings->render : nullptr);
+  if (frame) renderer_->render(world_->data(), *frame, timings ? &timings->render : nullptr);
 
   const Pose dataset_from_world = motion_->world_from_dataset().inverse();
   truth.index = next_;

@@ -44,11 +44,14 @@ constexpr double kMovingRotationDeg = 0.1;
 
 class SimulatedSequence {
  public:
-  SimulatedSequence(const Scenario& scenario, GlBackend backend);
+  // `render` = false: ground truth only (no GL context, no images).
+  SimulatedSequence(const Scenario& scenario, GlBackend backend, bool render = true);
   int frame_count() const { return static_cast<int>(stamps_.size()); }
   int next_index() const { return next_; }
   // Renders the next frame; false after the last.
   bool next(RenderedFrame& frame, FrameTruth& truth, SequenceTimings* timings = nullptr);
+  // Advances to the next frame without rendering; false after the last.
+  bool next_truth(FrameTruth& truth);
 
   const World& world() const { return *world_; }
   const ClassTable& classes() const { return classes_; }
@@ -65,6 +68,8 @@ class SimulatedSequence {
   std::vector<const Instance*> tracked_;            // pushables and actors
   std::vector<std::vector<Pose>> previous_bodies_;  // per tracked instance
   int next_ = 0;
+
+  bool advance(RenderedFrame* frame, FrameTruth& truth, SequenceTimings* timings);
 };
 
 }  // namespace depot::sim
