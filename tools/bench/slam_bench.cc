@@ -14,6 +14,7 @@
 #include <CLI/CLI.hpp>
 
 #include "common/error.h"
+#include "common/percentile.h"
 #include "sim/pipeline/render_dataset.h"
 #include "sim/scenario/scenario_loader.h"
 #include "slam/io/settings.h"
@@ -26,11 +27,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
-}
+using depot::percentile;
 
 double rss_mb() {
   std::ifstream statm("/proc/self/statm");

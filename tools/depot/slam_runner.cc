@@ -9,6 +9,7 @@
 
 #include "common/error.h"
 #include "common/interrupt.h"
+#include "common/percentile.h"
 #include "common/progress.h"
 #include "slam/detect/detection_file.h"
 #include "slam/detect/detector_factory.h"
@@ -22,18 +23,6 @@ namespace fs = std::filesystem;
 
 namespace depot::cli {
 namespace {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
-}
 
 std::string shipped(const std::string& relative) {
   return std::string(DEPOT_SOURCE_DIR) + "/" + relative;
@@ -191,12 +180,12 @@ RunSummary run_sequence(const RunOptions& o) {
   summary.map_points = system.n_map_points();
   summary.median_ms = percentile(total, 0.5);
   summary.p95_ms = percentile(total, 0.95);
-  summary.extract_ms = median(extract);
-  summary.track_ms = median(track);
-  summary.filter_ms = median(filter_ms);
-  summary.wait_ms = median(wait_ms);
-  summary.detect_ms = median(detect_ms);
-  summary.flow_ms = median(flow_ms);
+  summary.extract_ms = percentile(extract, 0.5);
+  summary.track_ms = percentile(track, 0.5);
+  summary.filter_ms = percentile(filter_ms, 0.5);
+  summary.wait_ms = percentile(wait_ms, 0.5);
+  summary.detect_ms = percentile(detect_ms, 0.5);
+  summary.flow_ms = percentile(flow_ms, 0.5);
   summary.ba_ms_total = system.mapping_stats().ba_ms;
   if (stats.is_open()) {
     stats.close();
