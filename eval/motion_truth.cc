@@ -52,14 +52,38 @@ MotionTruth::MotionTruth(const std::string& dataset) : root_(dataset) {
   }
 }
 
-std::vector<uint8_t> MotionTruth::on_moving_object(
-    double timestamp, const std::vector<cv::KeyPoint>& keypoints) const {
-  const std::string key = stamp_key(timestamp);
+cv::Mat MotionTruth::load_labels(const std::string& key) const {
   auto it = label_files_.find(key);
   if (it == label_files_.end()) fail(root_, "no label image for timestamp " + key);
   const std::string path = (fs::path(root_) / it->second).string();
   cv::Mat labels = cv::imread(path, cv::IMREAD_UNCHANGED);
   if (labels.empty() || labels.type() != CV_16UC1) fail(path, "label image missing or not 16-bit");
+  return labels;
+}
+
+std::vector<double> MotionTruth::timestamps() const {
+  std::vector<double> stamps;
+  for (const auto& [key, file] : label_files_) stamps.push_back(std::stod(key));
+  return stamps;
+}
+
+double MotionTruth::moving_fraction(double timestamp) const {
+  const std::string key = stamp_key(timestamp);
+  const cv::Mat labels = load_labels(key);
+  auto moving = moving_ids_.find(key);
+  if (moving == moving_ids_.end()) return 0.0;
+  size_t count = 0;
+  for (int y = 0; y < labels.rows; ++y) {
+    const uint16_t* row = labels.ptr<uint16_t>(y);
+    for (int x = 0; x < labels.cols; ++x) count += moving->second.count(row[x]);
+  }
+  return static_cast<double>(count) / labels.total();
+}
+
+std::vector<uint8_t> MotionTruth::on_moving_object(
+    double timestamp, const std::vector<cv::KeyPoint>& keypoints) const {
+  const std::string key = stamp_key(timestamp);
+  const cv::Mat labels = load_labels(key);
   std::vector<uint8_t> out(keypoints.size(), 0);
   auto moving = moving_ids_.find(key);
   if (moving == moving_ids_.end()) return out;

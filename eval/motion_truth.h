@@ -22,7 +22,16 @@ class MotionTruth {
   std::vector<uint8_t> on_moving_object(double timestamp,
                                         const std::vector<cv::KeyPoint>& keypoints) const;
 
+  // Share of the frame's pixels on objects flagged moving (0..1): the
+  // dynamic load a sweep reports alongside its knobs.
+  double moving_fraction(double timestamp) const;
+
+  // The rgb timestamps that have a label image, in increasing order.
+  std::vector<double> timestamps() const;
+
  private:
+  cv::Mat load_labels(const std::string& key) const;
+
   std::string root_;
   std::map<std::string, std::string> label_files_;   // stamp -> labels/x.png
   std::map<std::string, std::set<int>> moving_ids_;  // stamp -> ids moving

@@ -240,9 +240,10 @@ ActorSpec read_actor(const Fields& f, size_t index, uint64_t seed) {
 
 }  // namespace
 
-Scenario load_scenario(const std::string& path) {
+Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>& overrides) {
   YAML::Node root = load_yaml_file(path, "scenario file");
   if (!root || root.IsNull()) fail(path, "empty scenario file");
+  for (const auto& o : overrides) apply_yaml_override(root, o, path + " (--set " + o.key + ")");
   Fields top(root, path, "scenario");
   top.allow_only({"name", "description", "scene", "classes", "seed", "frames", "shadows",
                   "dynamic_load", "camera", "motion", "timestamps", "sensor", "actors"});

@@ -1,13 +1,16 @@
 #pragma once
 #include <string>
 
+#include "common/yaml_overrides.h"
 #include "sim/scenario/scenario.h"
 
 namespace depot::sim {
 
 // Reads and validates a scenario; every problem throws depot::Error
 // "<file>:<line>: <problem>". Relative paths resolve against the YAML's folder.
-Scenario load_scenario(const std::string& path);
+// `overrides` change keys of the file before it is read ("sensor.rgb_noise",
+// "dynamic_load"), and are validated like the file's own keys.
+Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>& overrides = {});
 
 // Scales number, size and speed of the living actors by one load factor
 // (0 = no living actors, 1 = as written, up to 4). Deterministic.

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   depot::cli::register_sim_commands(app);
   depot::cli::register_slam_commands(app);
   depot::cli::register_eval_commands(app);
+  depot::cli::register_sweep_commands(app);
   depot::install_interrupt_handler();
 
   try {

@@ -30,10 +30,22 @@ struct RenderArgs {
   int writers = 2;
   int width = 0;
   int png_level = -1;
+  std::vector<std::string> settings;  // --set KEY=VALUE
 };
 
+std::vector<YamlOverride> parse_overrides(const std::vector<std::string>& texts) {
+  std::vector<YamlOverride> overrides;
+  for (const auto& t : texts) overrides.push_back(parse_yaml_override(t, "--set"));
+  return overrides;
+}
+
+void add_set_option(CLI::App* cmd, std::vector<std::string>& settings) {
+  cmd->add_option("--set", settings,
+                  "Change a scenario key, e.g. --set sensor.rgb_noise=4 (repeatable)");
+}
+
 void run_render(const RenderArgs& a, const CLI::App& cmd) {
-  sim::Scenario scenario = sim::load_scenario(resolve_scenario(a.scenario));
+  sim::Scenario scenario = sim::load_scenario(resolve_scenario(a.scenario), parse_overrides(a.settings));
   sim::RenderRequest r;
   r.dataset.output = a.output;
   r.dataset.overwrite = a.overwrite;
@@ -111,6 +123,7 @@ void register_sim_commands(CLI::App& app) {
           "zlib level 0-9 for all images (default: colour stored, depth and labels level 1)")
       ->check(CLI::Range(0, 9));
   render->add_flag("-q,--quiet", args->quiet, "No progress bar");
+  add_set_option(render, args->settings);
   render->callback([args, render] { run_render(*args, *render); });
 
   auto truth_args = std::make_shared<RenderArgs>();
@@ -130,8 +143,10 @@ void register_sim_commands(CLI::App& app) {
       ->check(CLI::Range(0.0, 4.0));
   truth->add_flag("--overwrite", truth_args->overwrite, "Replace an existing output folder");
   truth->add_flag("-q,--quiet", truth_args->quiet, "No progress bar");
+  add_set_option(truth, truth_args->settings);
   truth->callback([truth_args, truth] {
-    sim::Scenario scenario = sim::load_scenario(resolve_scenario(truth_args->scenario));
+    sim::Scenario scenario = sim::load_scenario(resolve_scenario(truth_args->scenario),
+                                                 parse_overrides(truth_args->settings));
     sim::RenderRequest r;
     r.dataset.output = truth_args->output;
     r.dataset.overwrite = truth_args->overwrite;

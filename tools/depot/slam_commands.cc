@@ -73,6 +73,13 @@ void add_rejection_options(CLI::App* cmd, RunOptions& o) {
   cmd->add_option("--classes", o.classes,
                   "A-priori class table YAML (default: scenes/apriori/depot|coco.yaml)");
   cmd->add_option("--detector-seed", o.detector_seed, "Seed of the simulated detector's errors");
+  cmd->add_option_function<std::vector<std::string>>(
+      "--detector-set",
+      [&o](const std::vector<std::string>& texts) {
+        for (const auto& t : texts)
+          o.detector_overrides.push_back(parse_yaml_override(t, "--detector-set"));
+      },
+      "Change a simulated-detector key, e.g. --detector-set miss_rate=0.2 (repeatable)");
   cmd->add_option("--settings", o.settings,
                   "Settings YAML (default: the dataset's calibration.yaml)");
   cmd->add_option("--background-margin", o.background_depth_margin,
@@ -102,7 +109,6 @@ void register_slam_commands(CLI::App& app) {
   run->add_flag("-q,--quiet", args->options.quiet, "No progress line");
   add_rejection_options(run, args->options);
   run->callback([args, run] { run_slam(*args, *run); });
-  register_ablation_command(*slam);
 }
 
 }  // namespace depot::cli

@@ -11,6 +11,7 @@
 #include "common/interrupt.h"
 #include "common/percentile.h"
 #include "common/progress.h"
+#include "common/yaml_overrides.h"
 #include "slam/detect/detection_file.h"
 #include "slam/detect/detector_factory.h"
 #include "slam/detect/sim_detector.h"
@@ -32,6 +33,9 @@ std::unique_ptr<slam::Detector> make_detector(const RunOptions& o, const std::st
   if (type == "sim") {
     slam::SimDetectorConfig config;
     if (!o.detector_config.empty()) config = slam::load_sim_detector_config_file(o.detector_config);
+    if (!o.detector_overrides.empty())
+      config = slam::load_sim_detector_config(
+          overrides_to_node(o.detector_overrides, "--detector-set"), "--detector-set", config);
     config.seed = o.detector_seed;
     return std::make_unique<slam::SimDetector>(o.dataset, config);
   }
@@ -39,6 +43,9 @@ std::unique_ptr<slam::Detector> make_detector(const RunOptions& o, const std::st
     if (o.detections.empty()) fail("--detector file", "needs --detections FILE");
     return std::make_unique<slam::FileDetector>(o.detections);
   }
+  if (!o.detector_overrides.empty())
+    fail("--detector-set", "applies to the simulated detector only (edit the " + type +
+                               " detector's YAML instead)");
   const auto& dnn = slam::dnn_detector_types();
   if (std::find(dnn.begin(), dnn.end(), type) == dnn.end())
     fail("--detector",

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/tum_io.h"
+#include "common/yaml_overrides.h"
 #include "eval/motion_truth.h"
 #include "slam/reject/rejection_filter.h"
 
@@ -21,6 +22,7 @@ struct RunOptions {
   std::string detector =
       "";  // sim | darknet | fastestdet | yolov5 | file ("" = sim on simulated data)
   std::string detector_config;  // YAML for dnn detectors / the simulated detector
+  std::vector<YamlOverride> detector_overrides;  // simulated detector keys ("miss_rate=0.2")
   std::string detections;       // detections file for --detector file
   std::string classes;          // a-priori class table (default by detector)
   uint64_t detector_seed = 1;

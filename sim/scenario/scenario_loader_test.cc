@@ -1,0 +1,42 @@
+// The scenario loader's command-line overrides (the sweep's parameters).
+#include "sim/scenario/scenario_loader.h"
+
+#include <gtest/gtest.h>
+
+#include "common/error.h"
+#include "common/testing/error_of.h"
+
+namespace depot::sim {
+namespace {
+
+const std::string kWalking = std::string(DEPOT_SOURCE_DIR) + "/scenarios/depot_walking_xyz.yaml";
+
+size_t living_actors(const Scenario& s) {
+  size_t n = 0;
+  for (const auto& a : s.actors) n += is_living_actor(a.type);
+  return n;
+}
+
+TEST(ScenarioOverrides, ChangeTheKeysTheyName) {
+  const Scenario plain = load_scenario(kWalking);
+  const Scenario changed = load_scenario(
+      kWalking, {{"sensor.rgb_noise", "4.5"}, {"dynamic_load", "2"}, {"frames", "40"}});
+  EXPECT_DOUBLE_EQ(changed.sensor.rgb_noise, 4.5);
+  EXPECT_DOUBLE_EQ(changed.sensor.disparity_noise, plain.sensor.disparity_noise);
+  EXPECT_EQ(changed.frames, 40);
+  EXPECT_DOUBLE_EQ(changed.dynamic_load, 2.0);
+  EXPECT_EQ(living_actors(changed), 2 * living_actors(plain));
+  EXPECT_EQ(load_scenario(kWalking, {{"dynamic_load", "0"}}).actors.size() + living_actors(plain),
+            plain.actors.size());
+}
+
+TEST(ScenarioOverrides, AreValidatedLikeTheFile) {
+  EXPECT_NE(error_of([] { load_scenario(kWalking, {{"sensor.bogus", "1"}}); }).find("bogus"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { load_scenario(kWalking, {{"dynamic_load", "9"}}); }).find("dynamic_load"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { load_scenario(kWalking, {{"sensor.rgb_noise", "loud"}}); }), "");
+}
+
+}  // namespace
+}  // namespace depot::sim

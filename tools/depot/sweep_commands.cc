@@ -1,0 +1,193 @@
+// `depot sweep ...`: grids of simulated runs (scenarios x parameter levels x
+// modes x seeds), each job its own process, resumable, with a report.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "common/error.h"
+#include "common/interrupt.h"
+#include "tools/depot/commands.h"
+#include "tools/depot/paths.h"
+#include "tools/harness/sweep_jobs.h"
+#include "tools/harness/sweep_plan.h"
+#include "tools/harness/sweep_report.h"
+#include "tools/harness/sweep_runner.h"
+#include "tools/harness/sweep_spec.h"
+
+#include "sim/scenario/scenario_loader.h"
+
+namespace fs = std::filesystem;
+
+namespace depot::cli {
+namespace {
+
+struct SweepArgs {
+  std::vector<std::string> scenarios;
+  std::vector<std::string> vary, fixed;
+  std::vector<std::string> modes = {"orb", "orb+yolo", "orb+lk", "full"};
+  int seeds = 3, frames = 300, width = 640, workers = 1;
+  bool threaded_mapping = false, keep_data = false, plan_only = false;
+  std::vector<std::string> figures;
+  std::string output;
+};
+
+std::string self_program() { return fs::read_symlink("/proc/self/exe").string(); }
+
+harness::SweepSpec make_spec(const SweepArgs& a) {
+  harness::SweepSpec spec;
+  for (const auto& name : a.scenarios) {
+    const std::string path = fs::absolute(resolve_scenario(name)).lexically_normal().string();
+    spec.scenarios.push_back({sim::load_scenario(path).name, path});
+  }
+  for (const auto& v : a.vary) spec.vary.push_back(harness::parse_sweep_parameter(v, "--vary"));
+  for (const auto& v : a.fixed) spec.fixed.push_back(harness::parse_sweep_parameter(v, "--set"));
+  spec.modes = a.modes;
+  spec.seeds = a.seeds;
+  spec.frames = a.frames;
+  spec.width = a.width;
+  spec.sync_mapping = !a.threaded_mapping;
+  spec.keep_data = a.keep_data;
+  harness::validate(spec, "depot sweep run");
+  // Every cell's overrides must load before hours of work start.
+  const harness::SweepPlan plan = harness::make_sweep_plan(spec);
+  for (const auto& cell : plan.cells)
+    sim::load_scenario(spec.scenarios[cell.scenario].path,
+                       harness::cell_overrides(plan, cell, harness::ParameterTarget::kScenario));
+  return spec;
+}
+
+int report(const harness::SweepPlan& plan, const harness::SweepLayout& layout,
+           const std::vector<std::string>& figures, bool print_table) {
+  const harness::ReportFiles files = harness::write_sweep_report(plan, layout, figures);
+  if (print_table) std::printf("%s", files.ablation_markdown.c_str());
+  std::printf("report: %s (%zu of %zu runs)\ntables: %s\n", files.html.c_str(), files.runs_found,
+              files.runs_expected, files.markdown.c_str());
+  return 0;
+}
+
+void execute(const harness::SweepPlan& plan, const harness::SweepLayout& layout, int workers,
+             const std::vector<std::string>& figures) {
+  harness::SweepRunOptions options;
+  options.program = self_program();
+  options.workers = workers;
+  const harness::SweepRunResult r = harness::run_sweep(plan, layout, options, interrupt_flag());
+  if (r.interrupted)
+    fail(layout.root, "sweep interrupted; finished runs are kept, resume with `depot sweep resume " +
+                          layout.root + "`");
+  report(plan, layout, figures, true);
+  if (r.failed || r.blocked)
+    fail(layout.root, std::to_string(r.failed) + " job(s) failed and " +
+                          std::to_string(r.blocked) +
+                          " could not run (logs in " + layout.root +
+                          "/logs); `depot sweep resume` retries them");
+}
+
+void run_command(const SweepArgs& a) {
+  const harness::SweepSpec spec = make_spec(a);
+  const harness::SweepLayout layout{a.output};
+  harness::write_or_check_spec(layout, spec);
+  const harness::SweepPlan plan = harness::make_sweep_plan(spec);
+  if (a.plan_only) {
+    // For a cluster scheduler: every render job before the runs that read it.
+    for (const auto& job : plan.jobs) {
+      for (const auto& word : harness::job_command(self_program(), layout, job))
+        std::printf("%s ", word.c_str());
+      std::printf("\n");
+    }
+    return;
+  }
+  execute(plan, layout, a.workers, a.figures);
+}
+
+void add_run_options(CLI::App* cmd, SweepArgs& a) {
+  cmd->add_option("scenarios", a.scenarios, "Scenario names or YAML files")->required();
+  cmd->add_option("-o,--output", a.output, "Sweep folder (resumes when it holds this sweep)")
+      ->required();
+  cmd->add_option("--vary", a.vary,
+                  "PARAM=L1,L2,...: load, depth_noise, rgb_noise, miss_rate, latency, "
+                  "scenario.KEY, detector.KEY (repeatable: the grid is the product)");
+  cmd->add_option("--set", a.fixed, "PARAM=VALUE for every run (same names as --vary)");
+  cmd->add_option("--modes", a.modes, "Modes, comma separated")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"orb", "orb+yolo", "orb+lk", "full"}));
+  cmd->add_option("--seeds", a.seeds, "Seeds per cell (scenario and detector)")
+      ->check(CLI::Range(1, 1000));
+  cmd->add_option("--frames", a.frames, "Frames per run")->check(CLI::Range(10, 100000));
+  cmd->add_option("--width", a.width, "Image width (height and intrinsics scale)")
+      ->check(CLI::Range(64, 4096));
+  cmd->add_flag("--threaded-mapping", a.threaded_mapping,
+                "Local mapping in its own thread (faster, not reproducible)");
+  cmd->add_flag("--keep-data", a.keep_data, "Keep rendered datasets after their runs");
+  cmd->add_flag("--plan-only", a.plan_only,
+                "Write sweep.json and print one command per job (for a cluster), run nothing");
+}
+
+void add_execution_options(CLI::App* cmd, SweepArgs& a) {
+  cmd->add_option("-j,--workers", a.workers, "Jobs run at the same time")
+      ->check(CLI::Range(1, 256));
+  cmd->add_option("--figures", a.figures,
+                  "Run ids whose trajectory figures the report shows (default: orb and full at "
+                  "the last level, seed 1)")
+      ->delimiter(',');
+}
+
+}  // namespace
+
+void register_sweep_commands(CLI::App& app) {
+  CLI::App* group = app.add_subcommand(
+      "sweep", "Grids of simulated runs (scenarios x levels x modes x seeds) with a report");
+  group->require_subcommand(1);
+
+  auto run_args = std::make_shared<SweepArgs>();
+  CLI::App* run = group->add_subcommand(
+      "run", "Run a sweep (or resume it in the same folder) and write its report");
+  add_run_options(run, *run_args);
+  add_execution_options(run, *run_args);
+  run->callback([run_args] { run_command(*run_args); });
+
+  auto resume_args = std::make_shared<SweepArgs>();
+  CLI::App* resume =
+      group->add_subcommand("resume", "Finish an interrupted sweep, skipping finished jobs");
+  resume->add_option("folder", resume_args->output, "Sweep folder")->required();
+  add_execution_options(resume, *resume_args);
+  resume->callback([resume_args] {
+    const harness::SweepLayout layout{resume_args->output};
+    const harness::SweepPlan plan = harness::make_sweep_plan(harness::read_spec(layout));
+    execute(plan, layout, resume_args->workers, resume_args->figures);
+  });
+
+  auto job_folder = std::make_shared<std::string>();
+  auto job_id = std::make_shared<std::string>();
+  CLI::App* job = group->add_subcommand(
+      "job", "Run one job of a sweep in this process (what `run` starts per job; for clusters)");
+  job->add_option("folder", *job_folder, "Sweep folder")->required();
+  job->add_option("id", *job_id, "Job id (see `depot sweep run --plan-only`)")->required();
+  job->callback([job_folder, job_id] {
+    const harness::SweepLayout layout{*job_folder};
+    const harness::SweepPlan plan = harness::make_sweep_plan(harness::read_spec(layout));
+    const harness::SweepJob& j = harness::find_job(plan, *job_id, layout.root);
+    if (j.kind == harness::JobKind::kRender) {
+      const harness::DatasetRecord d = harness::run_render_job(plan, layout, j);
+      std::printf("%s: %d frames, %.1f %% moving pixels, %.1f s\n", j.id.c_str(), d.frames,
+                  100 * d.moving_share_mean, d.render_seconds);
+    } else {
+      const harness::RunRecord r = harness::run_slam_job(plan, layout, j);
+      std::printf("%s: %s ATE %.4f m precision %.3f recall %.3f, %.1f s\n", j.id.c_str(),
+                  r.ok ? "ok" : r.error.c_str(), r.ate_rmse, r.precision, r.recall, r.seconds);
+    }
+  });
+
+  auto report_args = std::make_shared<SweepArgs>();
+  CLI::App* rep = group->add_subcommand(
+      "report", "Write the tables, plots and HTML report of a (possibly partial) sweep");
+  rep->add_option("folder", report_args->output, "Sweep folder")->required();
+  rep->add_option("--figures", report_args->figures, "Run ids whose trajectory figures to show")
+      ->delimiter(',');
+  rep->callback([report_args] {
+    const harness::SweepLayout layout{report_args->output};
+    report(harness::make_sweep_plan(harness::read_spec(layout)), layout, report_args->figures,
+           true);
+  });
+}
+
+}  // namespace depot::cli

@@ -1,0 +1,140 @@
+#include "tools/harness/process_pool.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <thread>
+
+#include "common/error.h"
+
+extern char** environ;
+
+namespace fs = std::filesystem;
+
+namespace depot::harness {
+namespace {
+
+pid_t spawn(const ProcessJob& job) {
+  if (job.argv.empty()) fail("process pool", "job without a program");
+  fs::create_directories(fs::path(job.log_path).parent_path());
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, job.log_path.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  std::vector<char*> argv;
+  for (const auto& a : job.argv) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) fail(job.argv[0], std::string("cannot start: ") + std::strerror(rc));
+  return pid;
+}
+
+int exit_code_of(int status) {
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
+  return 255;
+}
+
+}  // namespace
+
+PoolSummary run_process_jobs(const std::vector<ProcessJob>& jobs, int workers,
+                             const JobFinished& on_finished, const std::atomic<bool>& stop) {
+  if (workers < 1) fail("process pool", "needs at least one worker");
+  std::vector<JobOutcome> outcome(jobs.size());
+  std::map<pid_t, size_t> running;
+  std::map<pid_t, std::chrono::steady_clock::time_point> started;
+  PoolSummary summary;
+
+  auto finish = [&](size_t i, JobState state, int code, double seconds) {
+    outcome[i] = {state, code, seconds};
+    (state == JobState::kSucceeded ? summary.succeeded
+     : state == JobState::kFailed  ? summary.failed
+                                   : summary.blocked)++;
+    if (on_finished) on_finished(i, outcome[i]);
+  };
+
+  while (true) {
+    if (stop.load()) {
+      summary.interrupted = true;
+      break;
+    }
+    // Start what can start, in list order.
+    for (size_t i = 0; i < jobs.size() && static_cast<int>(running.size()) < workers; ++i) {
+      if (outcome[i].state != JobState::kPending) continue;
+      bool ready = true, blocked = false;
+      for (size_t need : jobs[i].needs) {
+        const JobState s = outcome.at(need).state;
+        if (s == JobState::kFailed || s == JobState::kBlocked) blocked = true;
+        if (s != JobState::kSucceeded) ready = false;
+      }
+      if (blocked) {
+        finish(i, JobState::kBlocked, 0, 0);
+        continue;
+      }
+      if (!ready) continue;
+      const pid_t pid = spawn(jobs[i]);
+      outcome[i].state = JobState::kRunning;
+      running[pid] = i;
+      started[pid] = std::chrono::steady_clock::now();
+    }
+    if (running.empty()) {
+      // Anything still pending waits on a blocked need: mark and finish.
+      bool changed = false;
+      for (size_t i = 0; i < jobs.size(); ++i)
+        if (outcome[i].state == JobState::kPending) {
+          for (size_t need : jobs[i].needs)
+            if (outcome[need].state == JobState::kFailed ||
+                outcome[need].state == JobState::kBlocked) {
+              finish(i, JobState::kBlocked, 0, 0);
+              changed = true;
+              break;
+            }
+        }
+      if (!changed) break;
+      continue;
+    }
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, WNOHANG);
+    if (pid > 0 && running.count(pid)) {
+      const size_t i = running[pid];
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - started[pid]).count();
+      running.erase(pid);
+      const int code = exit_code_of(status);
+      finish(i, code == 0 ? JobState::kSucceeded : JobState::kFailed, code, seconds);
+      continue;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+
+  // Interrupted: ask the children to stop (they clean up their staged
+  // output), then wait for them; force after 20 s.
+  for (const auto& [pid, i] : running) kill(pid, SIGTERM);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (!running.empty()) {
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, WNOHANG);
+    if (pid > 0) {
+      running.erase(pid);
+      continue;
+    }
+    if (std::chrono::steady_clock::now() > deadline)
+      for (const auto& [p, i] : running) kill(p, SIGKILL);
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  for (const auto& o : outcome) summary.not_started += o.state == JobState::kPending;
+  return summary;
+}
+
+}  // namespace depot::harness

@@ -1,0 +1,56 @@
+#pragma once
+// The result record of one sweep job, written as JSON beside its outputs.
+// A dataset record describes a rendered dataset (its measured dynamic load);
+// a run record describes one SLAM run on it (accuracy, rejection, timing).
+// Undefined figures (no rejection, too few poses) are NaN, stored as null.
+#include <cmath>
+#include <map>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace depot::harness {
+
+struct DatasetRecord {
+  std::string id;
+  int frames = 0;
+  double moving_share_mean = 0;  // share of pixels on moving objects, mean over frames
+  double moving_share_max = 0;
+  double render_seconds = 0;
+};
+
+struct RunRecord {
+  std::string id;
+  std::string scenario;
+  std::map<std::string, std::string> parameters;  // varied parameter -> level
+  int seed = 1;
+  std::string mode;
+  bool ok = true;
+  std::string error;  // why the run produced no trajectory (ok = false)
+
+  int frames = 0;
+  int tracked = 0;  // frames in the final trajectory
+  int lost = 0;     // frames tracking reported lost
+  int keyframes = 0;
+  double ate_rmse = NAN, ate_mean = NAN, ate_median = NAN, ate_std = NAN, ate_max = NAN;  // m
+  double rpe_delta_s = 1.0;
+  double rpe_trans_rmse = NAN, rpe_trans_std = NAN;  // m
+  double rpe_rot_rmse = NAN, rpe_rot_std = NAN;      // deg
+  double precision = NAN, recall = NAN;              // rejection vs ground truth
+  long true_positive = 0, false_positive = 0, false_negative = 0, true_negative = 0;
+  double median_frame_ms = NAN, rejection_ms = NAN;
+  double moving_share = NAN;  // from the dataset record
+  double seconds = 0;         // wall time of the run
+};
+
+nlohmann::json to_json(const DatasetRecord& record);
+nlohmann::json to_json(const RunRecord& record);
+
+// Throw Error("<path>: ...") when the file is missing, corrupt or incomplete.
+DatasetRecord read_dataset_record(const std::string& path);
+RunRecord read_run_record(const std::string& path);
+
+// Atomic write of a record (indented JSON).
+void write_record(const std::string& path, const nlohmann::json& record);
+
+}  // namespace depot::harness

@@ -1,0 +1,122 @@
+#include "tools/harness/sweep_figures.h"
+
+#include <map>
+
+#include "eval/series_plot.h"
+#include "tools/harness/sweep_tables.h"
+
+namespace depot::harness {
+namespace {
+
+// Cells that differ only in parameter k, keyed by everything else.
+std::map<std::string, std::vector<size_t>> groups_along(const SweepPlan& plan, size_t k) {
+  std::map<std::string, std::vector<size_t>> groups;
+  for (size_t c = 0; c < plan.cells.size(); ++c) {
+    const SweepCell& cell = plan.cells[c];
+    std::string key = plan.spec.scenarios[cell.scenario].name;
+    for (size_t j = 0; j < cell.levels.size(); ++j)
+      if (j != k) key += " " + plan.spec.vary[j].name + "=" + cell.levels[j];
+    groups[key].push_back(c);
+  }
+  return groups;
+}
+
+std::string file_safe(std::string s) {
+  for (char& ch : s)
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '.' && ch != '-') ch = '_';
+  return s;
+}
+
+void add_pair(const SweepPlan& plan, const SweepSummary& s, const std::vector<size_t>& cells,
+              const std::vector<std::string>& levels, const std::string& x_label,
+              const std::string& group, const std::string& stem, std::vector<Figure>& out) {
+  eval::SeriesPlot ate;
+  ate.title = "ATE RMSE vs " + x_label + (group.empty() ? "" : " (" + group + ")");
+  ate.x_label = x_label;
+  ate.y_label = "ATE RMSE (m)";
+  ate.x_levels = levels;
+  ate.log_y = true;
+  eval::SeriesPlot rejection = ate;
+  rejection.title = "Rejection precision / recall vs " + x_label +
+                    (group.empty() ? "" : " (" + group + ")");
+  rejection.y_label = "precision (solid), recall (dashed)";
+  rejection.log_y = false;
+  rejection.y_lo = 0.0;
+  rejection.y_hi = 1.0;
+  bool any_ate = false, any_rejection = false;
+  for (size_t m = 0; m < plan.spec.modes.size(); ++m) {
+    const std::string& mode = plan.spec.modes[m];
+    eval::PlotSeries a{mode, eval::series_colour(m), "", {}, {}};
+    eval::PlotSeries p{mode + " precision", eval::series_colour(m), "", {}, {}};
+    eval::PlotSeries r{mode + " recall", eval::series_colour(m), "6 4", {}, {}};
+    for (size_t c : cells) {
+      const CellModeSummary& e = *s.find(c, mode);
+      a.mean.push_back(e.ate_rmse.mean);
+      a.std.push_back(e.ate_rmse.std);
+      p.mean.push_back(e.precision.mean);
+      p.std.push_back(e.precision.std);
+      r.mean.push_back(e.recall.mean);
+      r.std.push_back(e.recall.std);
+      any_ate = any_ate || e.ate_rmse.count > 0;
+      any_rejection = any_rejection || e.precision.count > 0 || e.recall.count > 0;
+    }
+    ate.series.push_back(a);
+    if (mode != "orb") {
+      rejection.series.push_back(p);
+      rejection.series.push_back(r);
+    }
+  }
+  const std::string suffix = group.empty() ? "" : "__" + file_safe(group);
+  if (any_ate)
+    out.push_back({"ate_vs_" + stem + suffix + ".svg", ate.title, render_series_plot_svg(ate)});
+  if (any_rejection)
+    out.push_back({"rejection_vs_" + stem + suffix + ".svg", rejection.title,
+                   render_series_plot_svg(rejection)});
+}
+
+}  // namespace
+
+std::vector<Figure> sweep_figures(const SweepPlan& plan, const SweepSummary& s) {
+  std::vector<Figure> out;
+  if (plan.spec.vary.empty()) {
+    std::vector<size_t> cells;
+    std::vector<std::string> names;
+    for (size_t c = 0; c < plan.cells.size(); ++c) {
+      cells.push_back(c);
+      names.push_back(plan.spec.scenarios[plan.cells[c].scenario].name);
+    }
+    add_pair(plan, s, cells, names, "scenario", "", "scenario", out);
+    return out;
+  }
+  for (size_t k = 0; k < plan.spec.vary.size(); ++k) {
+    const std::string& name = plan.spec.vary[k].name;
+    for (const auto& [group, cells] : groups_along(plan, k)) {
+      std::vector<std::string> levels;
+      for (size_t c : cells) levels.push_back(plan.cells[c].levels[k]);
+      // A single scenario needs no group label.
+      const bool one_group = groups_along(plan, k).size() == 1;
+      add_pair(plan, s, cells, levels, name, one_group ? "" : group, file_safe(name), out);
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> default_figure_runs(const SweepPlan& plan) {
+  std::vector<std::string> modes;
+  const std::string cmp = compared_mode(plan.spec);
+  bool has_orb = false;
+  for (const auto& m : plan.spec.modes) has_orb = has_orb || m == "orb";
+  if (has_orb && !cmp.empty())
+    modes = {"orb", cmp};
+  else
+    modes = plan.spec.modes;
+  std::vector<std::string> ids;
+  const size_t last = plan.cells.size() - 1;
+  for (const auto& mode : modes)
+    for (const auto& job : plan.jobs)
+      if (job.kind == JobKind::kSlam && job.cell == last && job.seed == 1 && job.mode == mode)
+        ids.push_back(job.id);
+  return ids;
+}
+
+}  // namespace depot::harness

@@ -1,0 +1,164 @@
+#include "tools/harness/sweep_jobs.h"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+
+#include "common/error.h"
+#include "common/interrupt.h"
+#include "common/staged_directory.h"
+#include "common/tum_io.h"
+#include "eval/ate.h"
+#include "eval/matched_trajectories.h"
+#include "eval/motion_truth.h"
+#include "eval/result_plots.h"
+#include "eval/rpe.h"
+#include "eval/trajectory_plot.h"
+#include "sim/pipeline/render_dataset.h"
+#include "sim/scenario/scenario_loader.h"
+#include "tools/depot/slam_runner.h"
+
+namespace fs = std::filesystem;
+
+namespace depot::harness {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::map<std::string, std::string> cell_parameters(const SweepPlan& plan, const SweepCell& cell) {
+  std::map<std::string, std::string> out;
+  for (size_t k = 0; k < plan.spec.vary.size(); ++k) out[plan.spec.vary[k].name] = cell.levels[k];
+  return out;
+}
+
+void add_accuracy(const std::vector<StampedPose>& truth, const cli::RunSummary& s,
+                  const std::string& plot_path, RunRecord& r) {
+  const eval::MatchedTrajectories matched =
+      eval::match_trajectories(truth, s.trajectory, {}, "groundtruth", r.mode);
+  if (matched.size() < 3) {
+    r.ok = false;
+    r.error = "only " + std::to_string(matched.size()) + " poses match the ground truth";
+    return;
+  }
+  const eval::AteResult ate = eval::compute_ate(matched);
+  r.ate_rmse = ate.statistics.rmse;
+  r.ate_mean = ate.statistics.mean;
+  r.ate_median = ate.statistics.median;
+  r.ate_std = ate.statistics.std;
+  r.ate_max = ate.statistics.max;
+  eval::TrajectoryPlot plot = eval::ate_plot(matched, ate);
+  plot.title = r.id;
+  eval::write_trajectory_plot_svg(plot_path, plot);
+  try {
+    eval::PairSelection pairs;
+    pairs.delta = r.rpe_delta_s;
+    const eval::RpeResult rpe = eval::compute_rpe(matched, pairs);
+    r.rpe_trans_rmse = rpe.translation_statistics.rmse;
+    r.rpe_trans_std = rpe.translation_statistics.std;
+    r.rpe_rot_rmse = rpe.rotation_statistics.rmse;
+    r.rpe_rot_std = rpe.rotation_statistics.std;
+  } catch (const Error&) {
+    // Too short for the delta: RPE stays undefined (NaN), ATE still counts.
+  }
+}
+
+}  // namespace
+
+DatasetRecord run_render_job(const SweepPlan& plan, const SweepLayout& layout,
+                             const SweepJob& job) {
+  const auto start = std::chrono::steady_clock::now();
+  const SweepCell& cell = plan.cells.at(job.cell);
+  const SweepScenario& source = plan.spec.scenarios.at(cell.scenario);
+  sim::Scenario scenario =
+      sim::load_scenario(source.path, cell_overrides(plan, cell, ParameterTarget::kScenario));
+  sim::RenderRequest request;
+  request.dataset.output = layout.dataset_dir(job.id);
+  request.dataset.overwrite = true;  // a dataset without its record is from a killed job
+  request.frames = plan.spec.frames;
+  request.seed = static_cast<uint64_t>(job.seed);
+  request.width = plan.spec.width;
+  request.progress = false;
+  fs::create_directories(fs::path(request.dataset.output).parent_path());
+  const sim::RenderSummary rendered = sim::render_dataset(scenario, request);
+
+  DatasetRecord record;
+  record.id = job.id;
+  record.frames = rendered.frames;
+  const eval::MotionTruth truth(request.dataset.output);
+  double sum = 0;
+  size_t n = 0;
+  for (double t : truth.timestamps()) {
+    throw_if_interrupted(request.dataset.output);
+    const double share = truth.moving_fraction(t);
+    sum += share;
+    record.moving_share_max = std::max(record.moving_share_max, share);
+    ++n;
+  }
+  record.moving_share_mean = n ? sum / n : 0.0;
+  record.render_seconds = seconds_since(start);
+  write_record(layout.dataset_record(job.id), to_json(record));
+  return record;
+}
+
+RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const SweepJob& job) {
+  const auto start = std::chrono::steady_clock::now();
+  const SweepCell& cell = plan.cells.at(job.cell);
+  const std::string dataset = layout.dataset_dir(job.dataset_id);
+  if (!fs::is_directory(dataset) || !fs::is_regular_file(layout.dataset_record(job.dataset_id)))
+    fail(dataset, "not rendered yet (run job " + job.dataset_id + " first)");
+
+  RunRecord r;
+  r.id = job.id;
+  r.scenario = plan.spec.scenarios.at(cell.scenario).name;
+  r.parameters = cell_parameters(plan, cell);
+  r.seed = job.seed;
+  r.mode = job.mode;
+  r.moving_share = read_dataset_record(layout.dataset_record(job.dataset_id)).moving_share_mean;
+
+  fs::create_directories(fs::path(layout.run_dir(job.id)).parent_path());
+  StagedDirectory out(layout.run_dir(job.id), /*overwrite=*/true);
+  cli::RunOptions options;
+  options.dataset = dataset;
+  options.mode = job.mode;
+  options.sync = plan.spec.sync_mapping;
+  options.quiet = true;
+  options.detector_seed = static_cast<uint64_t>(job.seed);
+  options.detector_overrides = cell_overrides(plan, cell, ParameterTarget::kDetector);
+  options.stats_csv = (fs::path(out.path()) / "stats.csv").string();
+  try {
+    const cli::RunSummary s = cli::run_sequence(options);
+    r.frames = static_cast<int>(s.frames);
+    r.tracked = static_cast<int>(s.trajectory.size());
+    r.lost = s.lost;
+    r.keyframes = static_cast<int>(s.keyframes);
+    r.median_frame_ms = s.median_ms;
+    if (job.mode != "orb") {
+      r.rejection_ms = s.filter_ms;
+      r.precision = s.score.precision();
+      r.recall = s.score.recall();
+      r.true_positive = s.score.true_positive;
+      r.false_positive = s.score.false_positive;
+      r.false_negative = s.score.false_negative;
+      r.true_negative = s.score.true_negative;
+    }
+    write_tum_trajectory((fs::path(out.path()) / "trajectory.txt").string(), s.trajectory,
+                         "depot sweep run " + job.id);
+    add_accuracy(read_tum_trajectory((fs::path(dataset) / "groundtruth.txt").string()), s,
+                 (fs::path(out.path()) / "ate.svg").string(), r);
+  } catch (const Error& e) {
+    throw_if_interrupted(job.id);
+    // A run that never initialises is an outcome of the sweep, not a crash.
+    if (std::string(e.what()).find("never initialised") == std::string::npos) throw;
+    r.ok = false;
+    r.error = e.what();
+    r.frames = plan.spec.frames;
+  }
+  r.seconds = seconds_since(start);
+  write_record((fs::path(out.path()) / "result.json").string(), to_json(r));
+  out.commit();
+  return r;
+}
+
+}  // namespace depot::harness

@@ -1,0 +1,146 @@
+#include "tools/harness/sweep_plan.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include "common/error.h"
+#include "common/tum_io.h"
+
+namespace fs = std::filesystem;
+
+namespace depot::harness {
+namespace {
+
+// Letters, digits, '.', '-', '+' and '_' stay; anything else becomes '_'.
+std::string file_safe(const std::string& text) {
+  std::string out = text;
+  for (char& c : out)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-' && c != '+' &&
+        c != '_')
+      c = '_';
+  return out;
+}
+
+}  // namespace
+
+SweepPlan make_sweep_plan(const SweepSpec& spec) {
+  validate(spec, "sweep");
+  SweepPlan plan;
+  plan.spec = spec;
+  size_t combinations = 1;
+  for (const auto& p : spec.vary) combinations *= p.values.size();
+  for (size_t s = 0; s < spec.scenarios.size(); ++s) {
+    for (size_t c = 0; c < combinations; ++c) {
+      SweepCell cell;
+      cell.scenario = s;
+      cell.id = file_safe(spec.scenarios[s].name);
+      cell.label = spec.scenarios[s].name;
+      size_t rest = c;
+      // The last parameter varies fastest.
+      std::vector<std::string> levels(spec.vary.size());
+      for (size_t k = spec.vary.size(); k-- > 0;) {
+        levels[k] = spec.vary[k].values[rest % spec.vary[k].values.size()];
+        rest /= spec.vary[k].values.size();
+      }
+      for (size_t k = 0; k < spec.vary.size(); ++k) {
+        cell.id += "__" + file_safe(spec.vary[k].name) + "-" + file_safe(levels[k]);
+        cell.label += " " + spec.vary[k].name + "=" + levels[k];
+      }
+      cell.levels = levels;
+      plan.cells.push_back(cell);
+    }
+  }
+  for (size_t c = 0; c < plan.cells.size(); ++c)
+    for (int seed = 1; seed <= spec.seeds; ++seed) {
+      SweepJob job;
+      job.kind = JobKind::kRender;
+      job.cell = c;
+      job.seed = seed;
+      job.id = job.dataset_id = plan.cells[c].id + "__s" + std::to_string(seed);
+      plan.jobs.push_back(job);
+    }
+  const size_t renders = plan.jobs.size();
+  for (size_t r = 0; r < renders; ++r)
+    for (const auto& mode : spec.modes) {
+      SweepJob job = plan.jobs[r];
+      job.kind = JobKind::kSlam;
+      job.mode = mode;
+      job.id = job.dataset_id + "__" + file_safe(mode);
+      plan.jobs.push_back(job);
+    }
+  return plan;
+}
+
+const SweepJob& find_job(const SweepPlan& plan, const std::string& id, const std::string& sweep) {
+  for (const auto& job : plan.jobs)
+    if (job.id == id) return job;
+  fail(sweep, "no job '" + id + "' in this sweep");
+}
+
+std::vector<YamlOverride> cell_overrides(const SweepPlan& plan, const SweepCell& cell,
+                                         ParameterTarget target) {
+  std::vector<YamlOverride> out;
+  for (const auto& p : plan.spec.fixed) {
+    const ParameterKey key = resolve_parameter(p.name);
+    if (key.target == target) out.push_back({key.key, p.values.front()});
+  }
+  for (size_t k = 0; k < plan.spec.vary.size(); ++k) {
+    const ParameterKey key = resolve_parameter(plan.spec.vary[k].name);
+    if (key.target == target) out.push_back({key.key, cell.levels[k]});
+  }
+  return out;
+}
+
+std::string SweepLayout::spec_file() const { return (fs::path(root) / "sweep.json").string(); }
+std::string SweepLayout::dataset_dir(const std::string& id) const {
+  return (fs::path(root) / "data" / id).string();
+}
+std::string SweepLayout::dataset_record(const std::string& id) const {
+  return (fs::path(root) / "data" / (id + ".json")).string();
+}
+std::string SweepLayout::run_dir(const std::string& id) const {
+  return (fs::path(root) / "runs" / id).string();
+}
+std::string SweepLayout::run_record(const std::string& id) const {
+  return (fs::path(run_dir(id)) / "result.json").string();
+}
+std::string SweepLayout::log_file(const std::string& job_id) const {
+  return (fs::path(root) / "logs" / (job_id + ".log")).string();
+}
+std::string SweepLayout::report_dir() const { return (fs::path(root) / "report").string(); }
+
+bool job_finished(const SweepLayout& layout, const SweepJob& job) {
+  return fs::is_regular_file(job.kind == JobKind::kRender ? layout.dataset_record(job.id)
+                                                          : layout.run_record(job.id));
+}
+
+SweepSpec read_spec(const SweepLayout& layout) {
+  const std::string path = layout.spec_file();
+  std::ifstream in(path);
+  if (!in) fail(path, "cannot open (not a sweep folder?)");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    fail(path, std::string("corrupt sweep description: ") + e.what());
+  }
+  return sweep_spec_from_json(j, path);
+}
+
+void write_or_check_spec(const SweepLayout& layout, const SweepSpec& spec) {
+  const nlohmann::json wanted = to_json(spec);
+  if (fs::exists(layout.spec_file())) {
+    const nlohmann::json existing = to_json(read_spec(layout));
+    if (existing == wanted) return;
+    for (const auto& [key, value] : wanted.items())
+      if (existing.value(key, nlohmann::json()) != value)
+        fail(layout.root, "holds a different sweep (its '" + key +
+                              "' differs); resume it with `depot sweep resume " + layout.root +
+                              "` or choose another folder");
+    fail(layout.root, "holds a different sweep");
+  }
+  fs::create_directories(layout.root);
+  write_text_file_atomic(layout.spec_file(), wanted.dump(2) + "\n");
+}
+
+}  // namespace depot::harness

@@ -1,0 +1,70 @@
+#pragma once
+// A sweep's grid expanded into cells and jobs, and where each job's output
+// lives. A cell is one scenario at one combination of parameter levels; per
+// cell and seed one render job writes a dataset, and one SLAM job per mode
+// reads it. Ids are stable (derived from names and levels), so a resumed
+// sweep or a cluster array task finds the same job under the same id.
+#include <string>
+#include <vector>
+
+#include "common/yaml_overrides.h"
+#include "tools/harness/sweep_spec.h"
+
+namespace depot::harness {
+
+struct SweepCell {
+  size_t scenario = 0;              // index into spec.scenarios
+  std::vector<std::string> levels;  // one per spec.vary parameter
+  std::string id;                   // "depot_walking_xyz__load-0.5", safe as a file name
+  std::string label;                // "depot_walking_xyz load=0.5"
+};
+
+enum class JobKind { kRender, kSlam };
+
+struct SweepJob {
+  JobKind kind = JobKind::kRender;
+  std::string id;  // render: the dataset id; slam: dataset id + "__" + mode
+  size_t cell = 0;
+  int seed = 1;
+  std::string mode;        // slam jobs only
+  std::string dataset_id;  // the dataset a slam job reads (its own id for render)
+};
+
+struct SweepPlan {
+  SweepSpec spec;
+  std::vector<SweepCell> cells;
+  std::vector<SweepJob> jobs;  // all render jobs first, then slam jobs
+};
+
+SweepPlan make_sweep_plan(const SweepSpec& spec);
+
+// Throws Error("<sweep>: no job '<id>'").
+const SweepJob& find_job(const SweepPlan& plan, const std::string& id, const std::string& sweep);
+
+// The overrides of a cell (its levels plus the fixed settings) for one target.
+std::vector<YamlOverride> cell_overrides(const SweepPlan& plan, const SweepCell& cell,
+                                         ParameterTarget target);
+
+// Where a sweep keeps its files, under one root folder.
+struct SweepLayout {
+  std::string root;
+  std::string spec_file() const;                          // sweep.json
+  std::string dataset_dir(const std::string& id) const;   // data/<id>/
+  std::string dataset_record(const std::string& id) const;  // data/<id>.json
+  std::string run_dir(const std::string& id) const;       // runs/<id>/
+  std::string run_record(const std::string& id) const;    // runs/<id>/result.json
+  std::string log_file(const std::string& job_id) const;  // logs/<id>.log
+  std::string report_dir() const;                         // report/
+};
+
+// A job is finished when its record exists (records are written last and
+// atomically, so a killed job never looks finished).
+bool job_finished(const SweepLayout& layout, const SweepJob& job);
+
+// Writes sweep.json, or checks that an existing one describes the same sweep
+// (so a resume cannot mix two grids in one folder). Throws Error naming the
+// folder and the first difference.
+void write_or_check_spec(const SweepLayout& layout, const SweepSpec& spec);
+SweepSpec read_spec(const SweepLayout& layout);
+
+}  // namespace depot::harness

@@ -1,0 +1,82 @@
+#include "tools/harness/sweep_plan.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <set>
+
+#include "common/error.h"
+#include "common/testing/error_of.h"
+#include "tools/harness/run_record.h"
+
+namespace fs = std::filesystem;
+
+namespace depot::harness {
+namespace {
+
+SweepSpec grid_spec() {
+  SweepSpec s;
+  s.scenarios = {{"depot_walking_xyz", "/x/walking.yaml"}};
+  s.vary = {{"load", {"0", "1", "2"}}, {"miss_rate", {"0.05", "0.3"}}};
+  s.fixed = {{"rgb_noise", {"3"}}};
+  s.modes = {"orb", "orb+yolo"};
+  s.seeds = 2;
+  return s;
+}
+
+TEST(SweepPlan, ExpandsTheGridIntoCellsAndJobsWithUniqueIds) {
+  const SweepPlan plan = make_sweep_plan(grid_spec());
+  ASSERT_EQ(plan.cells.size(), 6u);
+  EXPECT_EQ(plan.cells[1].id, "depot_walking_xyz__load-0__miss_rate-0.3");
+  EXPECT_EQ(plan.cells[1].label, "depot_walking_xyz load=0 miss_rate=0.3");
+  ASSERT_EQ(plan.jobs.size(), 6u * 2 + 6u * 2 * 2);
+  std::set<std::string> ids;
+  for (const auto& job : plan.jobs) EXPECT_TRUE(ids.insert(job.id).second) << job.id;
+  const SweepJob& run = find_job(plan, "depot_walking_xyz__load-2__miss_rate-0.05__s2__orb+yolo",
+                                 "sweep");
+  EXPECT_EQ(run.kind, JobKind::kSlam);
+  EXPECT_EQ(run.dataset_id, "depot_walking_xyz__load-2__miss_rate-0.05__s2");
+  EXPECT_EQ(run.seed, 2);
+  EXPECT_NE(error_of([&] { find_job(plan, "nope", "sweep"); }).find("no job 'nope'"),
+            std::string::npos);
+}
+
+TEST(SweepPlan, SendsEachParameterToItsTarget) {
+  const SweepPlan plan = make_sweep_plan(grid_spec());
+  const SweepCell& cell = plan.cells[5];  // load 2, miss_rate 0.3
+  const auto scenario = cell_overrides(plan, cell, ParameterTarget::kScenario);
+  const auto detector = cell_overrides(plan, cell, ParameterTarget::kDetector);
+  ASSERT_EQ(scenario.size(), 2u);
+  EXPECT_EQ(scenario[0].key, "sensor.rgb_noise");
+  EXPECT_EQ(scenario[1].key, "dynamic_load");
+  EXPECT_EQ(scenario[1].value, "2");
+  ASSERT_EQ(detector.size(), 1u);
+  EXPECT_EQ(detector[0].key, "miss_rate");
+  EXPECT_EQ(detector[0].value, "0.3");
+}
+
+TEST(SweepPlan, AFolderHoldsOneSweepAndRecordsMarkFinishedJobs) {
+  const fs::path root = fs::temp_directory_path() / ("plan_test_" + std::to_string(getpid()));
+  fs::remove_all(root);
+  const SweepLayout layout{root.string()};
+  write_or_check_spec(layout, grid_spec());
+  write_or_check_spec(layout, grid_spec());  // same sweep: fine
+  SweepSpec other = grid_spec();
+  other.seeds = 3;
+  EXPECT_NE(error_of([&] { write_or_check_spec(layout, other); }).find("'seeds' differs"),
+            std::string::npos);
+  EXPECT_EQ(to_json(read_spec(layout)), to_json(grid_spec()));
+
+  const SweepPlan plan = make_sweep_plan(grid_spec());
+  const SweepJob& render = plan.jobs.front();
+  EXPECT_FALSE(job_finished(layout, render));
+  fs::create_directories(root / "data");
+  DatasetRecord d;
+  d.id = render.id;
+  write_record(layout.dataset_record(render.id), to_json(d));
+  EXPECT_TRUE(job_finished(layout, render));
+  fs::remove_all(root);
+}
+
+}  // namespace
+}  // namespace depot::harness

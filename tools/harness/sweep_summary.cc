@@ -1,0 +1,90 @@
+#include "tools/harness/sweep_summary.h"
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+namespace fs = std::filesystem;
+
+namespace depot::harness {
+
+MeanStd mean_std(const std::vector<double>& values) {
+  MeanStd out;
+  double sum = 0;
+  for (double v : values)
+    if (std::isfinite(v)) sum += v, ++out.count;
+  if (out.count == 0) return out;
+  out.mean = sum / out.count;
+  double sq = 0;
+  for (double v : values)
+    if (std::isfinite(v)) sq += (v - out.mean) * (v - out.mean);
+  out.std = std::sqrt(sq / out.count);
+  return out;
+}
+
+const CellModeSummary* SweepSummary::find(size_t cell, const std::string& mode) const {
+  for (const auto& e : entries)
+    if (e.cell == cell && e.mode == mode) return &e;
+  return nullptr;
+}
+
+SweepSummary summarize_records(const SweepPlan& plan, const std::vector<RunRecord>& records) {
+  SweepSummary summary;
+  std::map<std::string, const SweepJob*> jobs;
+  for (const auto& job : plan.jobs)
+    if (job.kind == JobKind::kSlam) {
+      jobs[job.id] = &job;
+      ++summary.expected_runs;
+    }
+  std::map<std::pair<size_t, std::string>, std::vector<const RunRecord*>> groups;
+  for (const auto& r : records) {
+    auto it = jobs.find(r.id);
+    if (it == jobs.end()) continue;  // not part of this plan
+    groups[{it->second->cell, r.mode}].push_back(&r);
+    summary.runs.push_back(r);
+  }
+  for (size_t c = 0; c < plan.cells.size(); ++c)
+    for (const auto& mode : plan.spec.modes) {
+      CellModeSummary e;
+      e.cell = c;
+      e.mode = mode;
+      std::vector<double> ate, ate_sd, rt, rt_sd, rr, rr_sd, p, r, tracked, moving;
+      for (const RunRecord* run : groups[{c, mode}]) {
+        ++e.runs;
+        e.failed += !run->ok;
+        e.lost += run->lost;
+        ate.push_back(run->ate_rmse);
+        ate_sd.push_back(run->ate_std);
+        rt.push_back(run->rpe_trans_rmse);
+        rt_sd.push_back(run->rpe_trans_std);
+        rr.push_back(run->rpe_rot_rmse);
+        rr_sd.push_back(run->rpe_rot_std);
+        p.push_back(run->precision);
+        r.push_back(run->recall);
+        tracked.push_back(run->frames ? static_cast<double>(run->tracked) / run->frames : NAN);
+        moving.push_back(run->moving_share);
+      }
+      e.ate_rmse = mean_std(ate);
+      e.ate_std = mean_std(ate_sd);
+      e.rpe_trans_rmse = mean_std(rt);
+      e.rpe_trans_std = mean_std(rt_sd);
+      e.rpe_rot_rmse = mean_std(rr);
+      e.rpe_rot_std = mean_std(rr_sd);
+      e.precision = mean_std(p);
+      e.recall = mean_std(r);
+      e.tracked_share = mean_std(tracked);
+      e.moving_share = mean_std(moving);
+      summary.entries.push_back(e);
+    }
+  return summary;
+}
+
+SweepSummary summarize_sweep(const SweepPlan& plan, const SweepLayout& layout) {
+  std::vector<RunRecord> records;
+  for (const auto& job : plan.jobs)
+    if (job.kind == JobKind::kSlam && fs::is_regular_file(layout.run_record(job.id)))
+      records.push_back(read_run_record(layout.run_record(job.id)));
+  return summarize_records(plan, records);
+}
+
+}  // namespace depot::harness

@@ -1,0 +1,50 @@
+#pragma once
+// The finished runs of a sweep gathered per cell and mode: mean and standard
+// deviation over seeds of each figure (population std, as numpy and evo).
+#include <string>
+#include <vector>
+
+#include "tools/harness/run_record.h"
+#include "tools/harness/sweep_plan.h"
+
+namespace depot::harness {
+
+struct MeanStd {
+  double mean = NAN;
+  double std = NAN;
+  int count = 0;  // finite values averaged
+};
+
+// NaN values are skipped; no finite value gives NaN, NaN.
+MeanStd mean_std(const std::vector<double>& values);
+
+struct CellModeSummary {
+  size_t cell = 0;
+  std::string mode;
+  int runs = 0;    // records found
+  int failed = 0;  // of them, without a trajectory
+  int lost = 0;    // lost frames over all runs
+  MeanStd ate_rmse, ate_std;              // m
+  MeanStd rpe_trans_rmse, rpe_trans_std;  // m
+  MeanStd rpe_rot_rmse, rpe_rot_std;      // deg
+  MeanStd precision, recall;
+  MeanStd tracked_share;  // frames in trajectory / frames
+  MeanStd moving_share;   // pixels on moving objects
+};
+
+struct SweepSummary {
+  std::vector<CellModeSummary> entries;  // cell-major, modes in spec order
+  std::vector<RunRecord> runs;           // every record found, in plan order
+  size_t expected_runs = 0;
+  // nullptr when the mode is not part of the sweep.
+  const CellModeSummary* find(size_t cell, const std::string& mode) const;
+};
+
+// Reads every run record of the plan that exists (missing ones are simply
+// not counted, so a partial sweep can be reported); a corrupt record throws.
+SweepSummary summarize_sweep(const SweepPlan& plan, const SweepLayout& layout);
+
+// The same from records already in memory (for tests and tools).
+SweepSummary summarize_records(const SweepPlan& plan, const std::vector<RunRecord>& records);
+
+}  // namespace depot::harness

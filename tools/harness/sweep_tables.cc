@@ -1,0 +1,196 @@
+#include "tools/harness/sweep_tables.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "eval/improvement.h"
+
+namespace depot::harness {
+namespace {
+
+TableValue text(const std::string& s) { return {s, NAN, NAN}; }
+TableValue number(double mean, double std = NAN) { return {"", mean, std}; }
+TableValue number(const MeanStd& m) { return {"", m.mean, m.std}; }
+
+double improvement(double baseline, double value) {
+  if (!std::isfinite(baseline) || !std::isfinite(value) || baseline <= 0) return NAN;
+  return eval::improvement_percent(baseline, value);
+}
+
+// Scenario, one column per varied parameter, and the measured moving share.
+void add_cell_columns(const SweepPlan& plan, Table& t) {
+  t.columns.push_back({"scenario"});
+  for (const auto& p : plan.spec.vary) t.columns.push_back({p.name});
+}
+
+std::vector<TableValue> cell_values(const SweepPlan& plan, size_t cell) {
+  std::vector<TableValue> row{text(plan.spec.scenarios[plan.cells[cell].scenario].name)};
+  for (const auto& level : plan.cells[cell].levels) row.push_back(text(level));
+  return row;
+}
+
+MeanStd moving_share(const SweepPlan& plan, const SweepSummary& s, size_t cell) {
+  for (const auto& mode : plan.spec.modes) {
+    const CellModeSummary* e = s.find(cell, mode);
+    if (e && e->moving_share.count) return e->moving_share;
+  }
+  return {};
+}
+
+std::string runs_text(const SweepPlan& plan, const SweepSummary& s, size_t cell) {
+  int runs = 0, failed = 0;
+  for (const auto& mode : plan.spec.modes)
+    if (const CellModeSummary* e = s.find(cell, mode)) runs += e->runs, failed += e->failed;
+  std::string t = std::to_string(runs) + " of " +
+                  std::to_string(plan.spec.seeds * static_cast<int>(plan.spec.modes.size()));
+  if (failed) t += " (" + std::to_string(failed) + " failed)";
+  return t;
+}
+
+bool has_mode(const SweepSpec& spec, const std::string& mode) {
+  return std::find(spec.modes.begin(), spec.modes.end(), mode) != spec.modes.end();
+}
+
+}  // namespace
+
+std::string compared_mode(const SweepSpec& spec) {
+  if (has_mode(spec, "full")) return "full";
+  for (auto it = spec.modes.rbegin(); it != spec.modes.rend(); ++it)
+    if (*it != "orb") return *it;
+  return "";
+}
+
+Table ablation_table(const SweepPlan& plan, const SweepSummary& s) {
+  Table t;
+  t.title = "Ablation: ATE RMSE per mode (paper Table 2)";
+  t.caption = "ATE RMSE in m after SE(3) alignment, mean ± std over " +
+              std::to_string(plan.spec.seeds) + " seed(s), " + std::to_string(plan.spec.frames) +
+              " frames at " + std::to_string(plan.spec.width) +
+              " px. Moving px = share of pixels on moving objects (measured).";
+  add_cell_columns(plan, t);
+  t.columns.push_back({"moving px", 1, false, " %"});
+  for (const auto& mode : plan.spec.modes) t.columns.push_back({mode, 4, true});
+  const std::string cmp = compared_mode(plan.spec);
+  const bool eq9 = has_mode(plan.spec, "orb") && !cmp.empty();
+  if (eq9) t.columns.push_back({cmp + " vs orb (Eq. 9)", 1, false, " %"});
+  t.columns.push_back({"runs"});
+  for (size_t c = 0; c < plan.cells.size(); ++c) {
+    auto row = cell_values(plan, c);
+    const MeanStd moving = moving_share(plan, s, c);
+    row.push_back(number(100 * moving.mean));
+    for (const auto& mode : plan.spec.modes) row.push_back(number(s.find(c, mode)->ate_rmse));
+    if (eq9)
+      row.push_back(
+          number(improvement(s.find(c, "orb")->ate_rmse.mean, s.find(c, cmp)->ate_rmse.mean)));
+    row.push_back(text(runs_text(plan, s, c)));
+    t.rows.push_back(row);
+  }
+  return t;
+}
+
+Table ate_against_orb_table(const SweepPlan& plan, const SweepSummary& s) {
+  Table t;
+  const std::string cmp = compared_mode(plan.spec);
+  t.title = "ATE against orb (paper Table 3)";
+  t.caption = "RMSE and S.D. of the absolute trajectory error (m), each averaged over seeds; "
+              "improvement by Eq. 9, rho = (orb - " + cmp + ") / orb.";
+  if (!has_mode(plan.spec, "orb") || cmp.empty()) return t;
+  add_cell_columns(plan, t);
+  for (const auto& name : {"orb RMSE", "orb S.D."}) t.columns.push_back({name, 4});
+  t.columns.push_back({cmp + " RMSE", 4});
+  t.columns.push_back({cmp + " S.D.", 4});
+  t.columns.push_back({"RMSE improvement", 1, false, " %"});
+  t.columns.push_back({"S.D. improvement", 1, false, " %"});
+  for (size_t c = 0; c < plan.cells.size(); ++c) {
+    const CellModeSummary& o = *s.find(c, "orb");
+    const CellModeSummary& f = *s.find(c, cmp);
+    auto row = cell_values(plan, c);
+    row.push_back(number(o.ate_rmse.mean));
+    row.push_back(number(o.ate_std.mean));
+    row.push_back(number(f.ate_rmse.mean));
+    row.push_back(number(f.ate_std.mean));
+    row.push_back(number(improvement(o.ate_rmse.mean, f.ate_rmse.mean)));
+    row.push_back(number(improvement(o.ate_std.mean, f.ate_std.mean)));
+    t.rows.push_back(row);
+  }
+  return t;
+}
+
+Table rpe_against_orb_table(const SweepPlan& plan, const SweepSummary& s) {
+  Table t;
+  const std::string cmp = compared_mode(plan.spec);
+  t.title = "RPE against orb (paper Table 4)";
+  t.caption = "Relative pose error over 1 s: translation RMSE and S.D. (m) and rotation RMSE "
+              "(deg), each averaged over seeds; improvement by Eq. 9.";
+  if (!has_mode(plan.spec, "orb") || cmp.empty()) return t;
+  add_cell_columns(plan, t);
+  t.columns.push_back({"orb trans RMSE", 4});
+  t.columns.push_back({"orb trans S.D.", 4});
+  t.columns.push_back({cmp + " trans RMSE", 4});
+  t.columns.push_back({cmp + " trans S.D.", 4});
+  t.columns.push_back({"trans improvement", 1, false, " %"});
+  t.columns.push_back({"orb rot RMSE", 3});
+  t.columns.push_back({cmp + " rot RMSE", 3});
+  t.columns.push_back({"rot improvement", 1, false, " %"});
+  for (size_t c = 0; c < plan.cells.size(); ++c) {
+    const CellModeSummary& o = *s.find(c, "orb");
+    const CellModeSummary& f = *s.find(c, cmp);
+    auto row = cell_values(plan, c);
+    row.push_back(number(o.rpe_trans_rmse.mean));
+    row.push_back(number(o.rpe_trans_std.mean));
+    row.push_back(number(f.rpe_trans_rmse.mean));
+    row.push_back(number(f.rpe_trans_std.mean));
+    row.push_back(number(improvement(o.rpe_trans_rmse.mean, f.rpe_trans_rmse.mean)));
+    row.push_back(number(o.rpe_rot_rmse.mean));
+    row.push_back(number(f.rpe_rot_rmse.mean));
+    row.push_back(number(improvement(o.rpe_rot_rmse.mean, f.rpe_rot_rmse.mean)));
+    t.rows.push_back(row);
+  }
+  return t;
+}
+
+Table rejection_table(const SweepPlan& plan, const SweepSummary& s) {
+  Table t;
+  t.title = "Rejection against ground truth";
+  t.caption = "Keypoints rejected as dynamic vs keypoints on objects flagged moving by the "
+              "simulator (precision, recall: mean ± std over seeds); tracked = frames in the "
+              "final trajectory; lost = frames tracking reported lost, summed over seeds.";
+  add_cell_columns(plan, t);
+  t.columns.push_back({"mode"});
+  t.columns.push_back({"precision", 3, true});
+  t.columns.push_back({"recall", 3, true});
+  t.columns.push_back({"tracked", 1, false, " %"});
+  t.columns.push_back({"lost frames", 0});
+  t.columns.push_back({"failed runs", 0});
+  for (size_t c = 0; c < plan.cells.size(); ++c)
+    for (const auto& mode : plan.spec.modes) {
+      const CellModeSummary& e = *s.find(c, mode);
+      auto row = cell_values(plan, c);
+      row.push_back(text(mode));
+      row.push_back(number(e.precision));
+      row.push_back(number(e.recall));
+      row.push_back(number(100 * e.tracked_share.mean));
+      row.push_back(number(e.runs ? e.lost : NAN));
+      row.push_back(number(e.runs ? e.failed : NAN));
+      t.rows.push_back(row);
+    }
+  return t;
+}
+
+Table runs_table(const SweepPlan& plan, const SweepSummary& s) {
+  Table t;
+  t.title = "All runs";
+  t.caption = "One row per finished run; its folder runs/<id>/ holds trajectory.txt, stats.csv, "
+              "ate.svg and result.json.";
+  t.columns = {{"run"}, {"seed"}, {"mode"}, {"ATE RMSE", 4}, {"RPE trans RMSE", 4},
+               {"precision", 3}, {"recall", 3}, {"tracked", 1, false, " %"}, {"seconds", 1},
+               {"note"}};
+  for (const auto& r : s.runs)
+    t.rows.push_back({text(r.id), text(std::to_string(r.seed)), text(r.mode), number(r.ate_rmse),
+                      number(r.rpe_trans_rmse), number(r.precision), number(r.recall),
+                      number(r.frames ? 100.0 * r.tracked / r.frames : NAN), number(r.seconds),
+                      text(r.ok ? "" : r.error)});
+  return t;
+}
+
+}  // namespace depot::harness
