@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages depot-slam needs, only those missing.
 # Idempotent; uses sudo when not root. Nothing is downloaded outside apt.
+# chromium renders the HTML report in a headless screenshot test.
 set -euo pipefail
 
 packages=(
@@ -10,6 +11,7 @@ packages=(
   libopencv-dev libpng-dev zlib1g-dev libeigen3-dev libceres-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libyaml-cpp-dev libcli11-dev libspdlog-dev nlohmann-json3-dev
+  chromium
 )
 
 missing=()
