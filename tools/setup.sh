@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # The main job on a fresh Debian 12 machine: install what is missing, build in
-# Release, render the default scenario and show what came out.
+# Release, render the default scenario, run the paper's four modes on it,
+# print the ablation table with the improvement of full over orb (Eq. 9) and
+# write the HTML report.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$here"
@@ -12,12 +14,9 @@ cmake --build build -j"$(nproc)" --target depot
 depot=./build/tools/depot/depot
 scenario="${1:-depot_walking_xyz}"
 out="out/${scenario}"
-echo "== rendering ${scenario} (Kinect-like sensor model) to ${out}"
-"$depot" sim render "$scenario" -o "$out" --frames 300 --overwrite
-"$depot" sim preview "$out" -o "out/${scenario}_preview.png"
-echo "== SLAM (plain ORB-SLAM2, no rejection) on ${out}"
-"$depot" slam run "$out" -o "out/${scenario}_orb.txt"
-echo "== ATE against the simulator's ground truth"
-"$depot" eval ate "$out/groundtruth.txt" "out/${scenario}_orb.txt" --plot "out/${scenario}_orb_ate.svg" \
-  --json "out/${scenario}_orb_ate.json"
-echo "== done: dataset ${out}, contact sheet out/${scenario}_preview.png, ATE plot out/${scenario}_orb_ate.svg"
+rm -rf "$out"
+echo "== ${scenario}: render 300 frames (640x480, Kinect-like sensor), then SLAM in modes orb, orb+yolo, orb+lk, full"
+"$depot" sweep run "$scenario" -o "$out" --seeds 1 --frames 300 --keep-data -j "$(nproc)"
+dataset="${out}/data/${scenario}__s1"
+"$depot" sim preview "$dataset" -o "${out}/preview.png"
+echo "== done: report ${out}/report/report.html, dataset ${dataset}, contact sheet ${out}/preview.png"
