@@ -67,6 +67,28 @@ std::vector<double> MotionTruth::timestamps() const {
   return stamps;
 }
 
+std::vector<uint8_t> MotionTruth::near_moving_object(double timestamp,
+                                                     const std::vector<cv::KeyPoint>& keypoints,
+                                                     int radius) const {
+  const std::string key = stamp_key(timestamp);
+  const cv::Mat labels = load_labels(key);
+  std::vector<uint8_t> out(keypoints.size(), 0);
+  auto moving = moving_ids_.find(key);
+  if (moving == moving_ids_.end()) return out;
+  for (size_t i = 0; i < keypoints.size(); ++i) {
+    const int cx = static_cast<int>(std::lround(keypoints[i].pt.x));
+    const int cy = static_cast<int>(std::lround(keypoints[i].pt.y));
+    for (int dy = -radius; dy <= radius && !out[i]; ++dy)
+      for (int dx = -radius; dx <= radius && !out[i]; ++dx) {
+        if (dx * dx + dy * dy > radius * radius) continue;
+        const int x = cx + dx, y = cy + dy;
+        if (x < 0 || y < 0 || x >= labels.cols || y >= labels.rows) continue;
+        out[i] = moving->second.count(labels.at<uint16_t>(y, x)) ? 1 : 0;
+      }
+  }
+  return out;
+}
+
 double MotionTruth::moving_fraction(double timestamp) const {
   const std::string key = stamp_key(timestamp);
   const cv::Mat labels = load_labels(key);

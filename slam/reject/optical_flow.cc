@@ -1,5 +1,7 @@
 #include "slam/reject/optical_flow.h"
 
+#include <algorithm>
+
 #include <opencv2/video/tracking.hpp>
 
 namespace depot::slam {
@@ -42,6 +44,20 @@ void SparseFlow::flow(const std::vector<cv::Point2f>& points, std::vector<cv::Po
     flow[i] = points[i] - back[i];
     ok[i] = 1;
   }
+}
+
+void SparseFlow::refine(const std::vector<cv::Point2f>& points, std::vector<cv::Point2f>& previous,
+                        std::vector<uint8_t>& ok, int window, int levels, float max_error) const {
+  ok.assign(points.size(), 0);
+  if (previous_.empty() || points.empty()) return;
+  const cv::TermCriteria term(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, params_.iterations,
+                              0.01);
+  std::vector<uint8_t> status;
+  std::vector<float> error;
+  cv::calcOpticalFlowPyrLK(current_, previous_, points, previous, status, error,
+                           cv::Size(window, window), std::min(levels, params_.levels), term,
+                           cv::OPTFLOW_USE_INITIAL_FLOW);
+  for (size_t i = 0; i < points.size(); ++i) ok[i] = status[i] && error[i] <= max_error;
 }
 
 }  // namespace depot::slam

@@ -27,6 +27,13 @@ class SparseFlow {
   // ok[i] = false where the track failed.
   void flow(const std::vector<cv::Point2f>& current_points, std::vector<cv::Point2f>& flow,
             std::vector<uint8_t>& ok) const;
+  // Refines where each point was in the previous frame, starting from a
+  // guess and searching only `levels` pyramid levels with a small window:
+  // a predicted position lets LK avoid being dragged by a nearby moving
+  // occluder. `previous` holds the guesses on entry and the result on exit;
+  // ok[i] = false where the track failed or its residual exceeds max_error.
+  void refine(const std::vector<cv::Point2f>& current_points, std::vector<cv::Point2f>& previous,
+              std::vector<uint8_t>& ok, int window, int levels, float max_error) const;
 
  private:
   FlowParams params_;

@@ -1,6 +1,8 @@
 #include "slam/reject/rejection_filter.h"
 
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 
 #include "common/error.h"
 
@@ -9,6 +11,16 @@ namespace {
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::vector<float> depth_at(const cv::Mat& depth, const std::vector<cv::KeyPoint>& keypoints) {
+  std::vector<float> out(keypoints.size(), 0.0f);
+  for (size_t i = 0; i < keypoints.size(); ++i) {
+    const int x = static_cast<int>(keypoints[i].pt.x + 0.5f),
+              y = static_cast<int>(keypoints[i].pt.y + 0.5f);
+    if (x >= 0 && y >= 0 && x < depth.cols && y < depth.rows) out[i] = depth.at<float>(y, x);
+  }
+  return out;
 }
 
 }  // namespace
@@ -111,68 +123,122 @@ void RejectionFilter::filter(const FrameImages& images, const std::vector<cv::Ke
       }
       break;
     }
-    case RejectionMode::kFull: {
-      std::vector<PointSet> sets = assign_point_sets(keypoints, detections_, classes_);
-      if (params_.background_depth_margin > 0) {
-        std::vector<float> depth(keypoints.size(), 0.0f);
-        for (size_t i = 0; i < keypoints.size(); ++i) {
-          const int x = static_cast<int>(keypoints[i].pt.x + 0.5f),
-                    y = static_cast<int>(keypoints[i].pt.y + 0.5f);
-          if (x >= 0 && y >= 0 && x < images.depth.cols && y < images.depth.rows)
-            depth[i] = images.depth.at<float>(y, x);
-        }
-        move_background_to_q(keypoints, depth, detections_, classes_,
-                             params_.background_depth_margin, sets);
-      }
-      std::vector<size_t> q_index, p_sample;
-      std::vector<size_t> p_index;
-      for (size_t i = 0; i < sets.size(); ++i) {
-        if (sets[i] == PointSet::kZ) {
-          keep[i] = 0;
-          stats_.z++;
-        } else if (sets[i] == PointSet::kQ) {
-          q_index.push_back(i);
-        } else {
-          p_index.push_back(i);
-        }
-      }
-      stats_.q = static_cast<int>(q_index.size());
-      if (!q_index.empty() && flow_.has_previous()) {
-        // Flow only for Q and an even sample of P (enough for its mean).
-        const auto tf = std::chrono::steady_clock::now();
-        const size_t step = std::max<size_t>(1, p_index.size() / params_.max_reference_points);
-        for (size_t k = 0; k < p_index.size(); k += step) p_sample.push_back(p_index[k]);
-        std::vector<cv::Point2f> pts, flow;
-        std::vector<uint8_t> ok;
-        for (size_t i : p_sample) pts.push_back(keypoints[i].pt);
-        for (size_t i : q_index) pts.push_back(keypoints[i].pt);
-        flow_.flow(pts, flow, ok);
-        const std::vector<cv::Point2f> p_flow(flow.begin(), flow.begin() + p_sample.size());
-        const std::vector<uint8_t> p_ok(ok.begin(), ok.begin() + p_sample.size());
-        const FlowTestResult test = mean_static_flow(p_flow, p_ok, params_.test);
-        stats_.flow_ms += ms_since(tf);
-        stats_.mean_flow = test.mean;
-        stats_.z_threshold = test.z;
-        for (size_t k = 0; k < q_index.size(); ++k) {
-          const size_t j = p_sample.size() + k;
-          // A Q point passes when it tracked and moves with the static scene.
-          const bool passes = ok[j] && !flow_is_dynamic(flow[j], test);
-          keep[q_index[k]] = passes;
-          stats_.q_to_p += passes;
-        }
-      } else {
-        stats_.q_to_p = stats_.q;  // no previous frame: nothing to test against
-      }
-      stats_.p = static_cast<int>(p_index.size()) + stats_.q_to_p;
-      sets_ = sets;
+    case RejectionMode::kFull:
+      filter_full(images, keypoints, keep);
       break;
-    }
   }
   stats_.kept = 0;
   for (uint8_t k : keep) stats_.kept += k;
   stats_.filter_ms = ms_since(t0);
   keypoints_ = keypoints;
   keep_ = keep;
+}
+
+void RejectionFilter::filter_full(const FrameImages& images,
+                                  const std::vector<cv::KeyPoint>& keypoints,
+                                  std::vector<uint8_t>& keep) {
+  std::vector<PointSet> sets = assign_point_sets(keypoints, detections_, classes_);
+  const bool ego = params_.ego_motion_flow && images.camera;
+  std::vector<float> depth;
+  if (params_.background_depth_margin > 0 || ego) depth = depth_at(images.depth, keypoints);
+  if (params_.background_depth_margin > 0)
+    move_background_to_q(keypoints, depth, detections_, classes_, params_.background_depth_margin,
+                         sets);
+  std::vector<size_t> q_index, p_index;
+  for (size_t i = 0; i < sets.size(); ++i) {
+    if (sets[i] == PointSet::kZ) {
+      keep[i] = 0;
+      stats_.z++;
+    } else if (sets[i] == PointSet::kQ) {
+      q_index.push_back(i);
+    } else {
+      p_index.push_back(i);
+    }
+  }
+  stats_.q = static_cast<int>(q_index.size());
+  sets_ = sets;
+  const bool test_p = params_.test_static_points;
+  if ((q_index.empty() && !test_p) || !flow_.has_previous()) {
+    stats_.q_to_p = stats_.q;  // nothing to test, or no previous frame to test against
+    stats_.p = static_cast<int>(p_index.size()) + stats_.q_to_p;
+    return;
+  }
+  // Flow only for Q and a sample of P (enough for its mean or motion), or for
+  // all of P when P is tested too.
+  const auto tf = std::chrono::steady_clock::now();
+  std::vector<size_t> reference;
+  const size_t wanted = ego ? 3 * params_.max_reference_points : params_.max_reference_points;
+  const size_t step = test_p ? 1 : std::max<size_t>(1, p_index.size() / wanted);
+  for (size_t k = 0; k < p_index.size(); k += step) reference.push_back(p_index[k]);
+  std::vector<cv::Point2f> pts, flow;
+  std::vector<uint8_t> ok;
+  for (size_t i : reference) pts.push_back(keypoints[i].pt);
+  for (size_t i : q_index) pts.push_back(keypoints[i].pt);
+  flow_.flow(pts, flow, ok);
+  const size_t n_ref = reference.size();
+  const std::vector<cv::Point2f> ref_flow(flow.begin(), flow.begin() + n_ref);
+  const std::vector<uint8_t> ref_ok(ok.begin(), ok.begin() + n_ref);
+  const FlowTestResult test = mean_static_flow(ref_flow, ref_ok, params_.test);
+  EgoMotionModel motion;
+  if (ego) {
+    std::vector<cv::Point2f> ref_pts(pts.begin(), pts.begin() + n_ref);
+    std::vector<float> ref_depth;
+    for (size_t i : reference) ref_depth.push_back(depth[i]);
+    motion = fit_ego_motion(*images.camera, ref_pts, ref_depth, ref_flow, ref_ok, params_.ego);
+  }
+  stats_.flow_ms += ms_since(tf);
+  stats_.mean_flow = test.mean;
+  stats_.z_threshold = test.z;
+  stats_.ego_motion = motion.valid;
+  const float ego_threshold = ego ? scaled_px(params_.ego.threshold_px, *images.camera) : 0.0f;
+  // With a camera motion, re-track each tested point from where a static
+  // point would have been (small window, so a nearby moving occluder does
+  // not drag it); it moves when LK fails there or settles away from the
+  // prediction. Without one, the paper's Eq. 7 on the pyramidal flow.
+  std::vector<uint8_t> guided_moves(pts.size(), 0), guided(pts.size(), 0);
+  if (motion.valid) {
+    std::vector<size_t> tested;
+    std::vector<cv::Point2f> current, previous, near, far;
+    for (size_t j = 0; j < pts.size(); ++j) {
+      if (j < n_ref && !test_p) continue;
+      const size_t kp = j < n_ref ? reference[j] : q_index[j - n_ref];
+      cv::Point2f a, b;
+      if (!predict_static_previous(motion, *images.camera, pts[j], depth[kp],
+                                   params_.ego.no_depth_min, &a, &b))
+        continue;
+      tested.push_back(j);
+      current.push_back(pts[j]);
+      previous.push_back(0.5f * (a + b));
+      near.push_back(a);
+      far.push_back(b);
+    }
+    std::vector<uint8_t> refined_ok;
+    flow_.refine(current, previous, refined_ok, params_.ego.refine_window,
+                 params_.ego.refine_levels, params_.ego.refine_max_error);
+    for (size_t k = 0; k < tested.size(); ++k) {
+      guided[tested[k]] = 1;
+      guided_moves[tested[k]] =
+          !refined_ok[k] || distance_to_prediction(previous[k], near[k], far[k]) > ego_threshold;
+    }
+  }
+  auto moves = [&](size_t j) {
+    if (guided[j]) return guided_moves[j] != 0;
+    return ok[j] && flow_is_dynamic(flow[j], test);
+  };
+  for (size_t k = 0; k < q_index.size(); ++k) {
+    const size_t j = n_ref + k;
+    // A Q point passes when it tracked and moves with the static scene.
+    const bool passes = (guided[j] || ok[j]) && !moves(j);
+    keep[q_index[k]] = passes;
+    stats_.q_to_p += passes;
+  }
+  if (test_p)
+    for (size_t k = 0; k < n_ref; ++k)
+      if (moves(k)) {
+        keep[reference[k]] = 0;
+        stats_.p_rejected++;
+      }
+  stats_.p = static_cast<int>(p_index.size()) - stats_.p_rejected + stats_.q_to_p;
 }
 
 }  // namespace depot::slam

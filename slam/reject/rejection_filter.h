@@ -12,6 +12,7 @@
 #include "slam/detect/detection.h"
 #include "slam/detect/detection_thread.h"
 #include "slam/reject/apriori_classes.h"
+#include "slam/reject/ego_motion_flow.h"
 #include "slam/reject/flow_test.h"
 #include "slam/reject/optical_flow.h"
 #include "slam/reject/point_sets.h"
@@ -34,12 +35,22 @@ struct RejectionParams {
   // object (the box's near depth) is background seen around the object; it
   // goes to Q and the flow test decides, like the paper's overlap rule.
   float background_depth_margin = 0.0f;
+  // Our extension, off by default: test flow against the camera's own
+  // motion fitted to P (ego_motion_flow.h) instead of P's mean flow, for
+  // points with depth (others keep the paper's test).
+  bool ego_motion_flow = false;
+  EgoMotionParams ego;
+  // Our extension, off by default: test P's points too, so moving points the
+  // detector missed (or that a jittered box left out) are rejected as well.
+  bool test_static_points = false;
 };
 
 // Per-frame statistics.
 struct RejectionStats {
   long frame = 0;
   int total = 0, z = 0, q = 0, q_to_p = 0, p = 0, kept = 0;
+  int p_rejected = 0;         // P points failing the flow test (test_static_points)
+  bool ego_motion = false;    // the flow test used a fitted camera motion
   int detections = 0;
   cv::Point2f mean_flow{0, 0};
   float z_threshold = 0;
@@ -69,6 +80,9 @@ class RejectionFilter : public KeypointFilter {
   const std::vector<PointSet>& last_sets() const { return sets_; }
 
  private:
+  void filter_full(const FrameImages& images, const std::vector<cv::KeyPoint>& keypoints,
+                   std::vector<uint8_t>& keep);
+
   RejectionMode mode_;
   AprioriClasses classes_;
   Detector* detector_;

@@ -54,7 +54,7 @@ TrackResult System::track(const cv::Mat& bgr, const cv::Mat& depth, double times
   auto t0 = std::chrono::steady_clock::now();
   cv::Mat gray;
   cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
-  if (filter_) filter_->begin_frame(FrameImages{bgr, gray, depth, timestamp, next_frame_id_});
+  if (filter_) filter_->begin_frame(FrameImages{bgr, gray, depth, timestamp, next_frame_id_, &cam});
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
   extractor_.extract(gray, cv::Mat(), keypoints, descriptors);
@@ -62,7 +62,7 @@ TrackResult System::track(const cv::Mat& bgr, const cv::Mat& depth, double times
   result.keypoints = static_cast<int>(keypoints.size());
   if (filter_) {
     std::vector<uint8_t> keep(keypoints.size(), 1);
-    filter_->filter(FrameImages{bgr, gray, depth, timestamp, next_frame_id_}, keypoints, keep);
+    filter_->filter(FrameImages{bgr, gray, depth, timestamp, next_frame_id_, &cam}, keypoints, keep);
     std::vector<cv::KeyPoint> kept;
     cv::Mat kept_desc;
     for (size_t i = 0; i < keypoints.size(); ++i) {

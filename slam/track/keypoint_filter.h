@@ -8,6 +8,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "slam/camera/pinhole_camera.h"
+
 namespace depot::slam {
 
 struct FrameImages {
@@ -16,6 +18,7 @@ struct FrameImages {
   const cv::Mat& depth;  // CV_32F metres, 0 = none
   double timestamp;
   long frame_id;
+  const PinholeCamera* camera = nullptr;  // the tracker's intrinsics
 };
 
 class KeypointFilter {

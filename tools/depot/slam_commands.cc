@@ -54,8 +54,9 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
   if (s.scored && a.options.mode != "orb") {
     std::printf(
         "rejection vs ground truth: precision %.3f recall %.3f (%ld of %ld static points thrown "
-        "away)\n",
-        s.score.precision(), s.score.recall(), s.score.false_positive, s.score.static_points());
+        "away, %ld of them within 4 px of a moving object)\n",
+        s.score.precision(), s.score.recall(), s.score.false_positive, s.score.static_points(),
+        s.false_positive_near_moving);
   }
 }
 
@@ -87,6 +88,11 @@ void add_rejection_options(CLI::App* cmd, RunOptions& o) {
                   "the flow test "
                   "(0 = the paper exactly)")
       ->check(CLI::Range(0.0, 10.0));
+  cmd->add_flag("--ego-flow", o.ego_motion_flow,
+                "Our extension of full: test flow against the camera's motion fitted to P (by "
+                "PnP on depth) instead of P's mean flow");
+  cmd->add_flag("--test-static", o.test_static_points,
+                "Our extension of full: apply the flow test to P's points too");
   cmd->add_flag("--sync", o.sync, "Run local mapping in the tracking thread (reproducible)");
 }
 

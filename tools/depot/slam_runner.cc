@@ -61,6 +61,27 @@ std::unique_ptr<slam::Detector> make_detector(const RunOptions& o, const std::st
 
 }  // namespace
 
+void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const std::string& where) {
+  YAML::Node value;
+  try {
+    value = YAML::Load(setting.value);
+    if (setting.key == "background_margin") {
+      const float m = value.as<float>();
+      if (!(m >= 0.0f && m <= 10.0f)) fail(where, "background_margin must be in [0, 10] m");
+      o.background_depth_margin = m;
+    } else if (setting.key == "ego_flow") {
+      o.ego_motion_flow = value.as<bool>();
+    } else if (setting.key == "test_static") {
+      o.test_static_points = value.as<bool>();
+    } else {
+      fail(where, "unknown rejection setting '" + setting.key +
+                      "' (expected background_margin, ego_flow, test_static)");
+    }
+  } catch (const YAML::Exception&) {
+    fail(where, "bad value '" + setting.value + "' for rejection setting '" + setting.key + "'");
+  }
+}
+
 RejectionSetup make_rejection(const RunOptions& o) {
   RejectionSetup setup;
   const slam::RejectionMode mode = slam::parse_rejection_mode(o.mode);
@@ -78,6 +99,8 @@ RejectionSetup make_rejection(const RunOptions& o) {
     classes.check_against(setup.detector->class_names(), table_path, setup.detector->name());
   slam::RejectionParams params;
   params.background_depth_margin = o.background_depth_margin;
+  params.ego_motion_flow = o.ego_motion_flow;
+  params.test_static_points = o.test_static_points;
   setup.filter =
       std::make_unique<slam::RejectionFilter>(mode, classes, setup.detector.get(), params);
   return setup;
@@ -148,6 +171,12 @@ RunSummary run_sequence(const RunOptions& o) {
     if (truth && filter) {
       const std::vector<uint8_t> moving = truth->on_moving_object(t, filter->last_keypoints());
       frame_score.add(filter->last_keep(), moving);
+      // Static points thrown away that touch a moving object's outline (a
+      // FAST corner there is formed by the mover, though its centre pixel is
+      // background): how much of the false rejection is that.
+      const std::vector<uint8_t> near = truth->near_moving_object(t, filter->last_keypoints(), 4);
+      for (size_t k = 0; k < moving.size(); ++k)
+        summary.false_positive_near_moving += !filter->last_keep()[k] && !moving[k] && near[k];
       // Where the false rejections come from: Z (boxes) or Q (flow test).
       for (size_t k = 0; k < moving.size(); ++k) {
         if (filter->last_keep()[k] || moving[k]) continue;

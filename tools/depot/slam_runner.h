@@ -31,7 +31,15 @@ struct RunOptions {
   bool quiet = false;
   std::string stats_csv;                 // per-frame statistics
   float background_depth_margin = 0.0f;  // our extension of `full` (0 = paper)
+  bool ego_motion_flow = false;          // our extension: flow test against camera motion
+  bool test_static_points = false;       // our extension: flow test on P too
 };
+
+// Sets one rejection option by name, as a sweep's "rejection.KEY=VALUE":
+// background_margin (m), ego_flow (bool), test_static (bool). Throws
+// Error("<where>: ...") for an unknown key or a bad value.
+void apply_rejection_setting(RunOptions& options, const YamlOverride& setting,
+                             const std::string& where);
 
 struct RunSummary {
   size_t frames = 0;
@@ -44,6 +52,7 @@ struct RunSummary {
   std::vector<StampedPose> keyframes_trajectory;
   bool scored = false;
   eval::RejectionScore score;
+  long false_positive_near_moving = 0;  // of score.false_positive: within 4 px of a mover
   std::string settings_source;
   std::string detector_name;
 };

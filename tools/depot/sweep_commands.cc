@@ -15,6 +15,8 @@
 #include "tools/harness/sweep_spec.h"
 
 #include "sim/scenario/scenario_loader.h"
+#include "slam/detect/sim_detector_config.h"
+#include "tools/depot/slam_runner.h"
 
 namespace fs = std::filesystem;
 
@@ -50,9 +52,17 @@ harness::SweepSpec make_spec(const SweepArgs& a) {
   harness::validate(spec, "depot sweep run");
   // Every cell's overrides must load before hours of work start.
   const harness::SweepPlan plan = harness::make_sweep_plan(spec);
-  for (const auto& cell : plan.cells)
+  for (const auto& cell : plan.cells) {
     sim::load_scenario(spec.scenarios[cell.scenario].path,
                        harness::cell_overrides(plan, cell, harness::ParameterTarget::kScenario));
+    slam::load_sim_detector_config(
+        overrides_to_node(harness::cell_overrides(plan, cell, harness::ParameterTarget::kDetector),
+                          "--vary"),
+        "--vary detector");
+    RunOptions options;
+    for (const auto& s : harness::cell_overrides(plan, cell, harness::ParameterTarget::kRejection))
+      apply_rejection_setting(options, s, "--vary rejection." + s.key);
+  }
   return spec;
 }
 

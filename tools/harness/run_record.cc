@@ -66,7 +66,8 @@ nlohmann::json to_json(const RunRecord& r) {
             {"true_positive", r.true_positive},
             {"false_positive", r.false_positive},
             {"false_negative", r.false_negative},
-            {"true_negative", r.true_negative}}},
+            {"true_negative", r.true_negative},
+            {"false_positive_near_moving", r.false_positive_near_moving}}},
           {"timing",
            {{"median_frame_ms", number(r.median_frame_ms)},
             {"rejection_ms", number(r.rejection_ms)},
@@ -123,6 +124,7 @@ RunRecord read_run_record(const std::string& path) {
     r.false_positive = rej.at("false_positive").get<long>();
     r.false_negative = rej.at("false_negative").get<long>();
     r.true_negative = rej.at("true_negative").get<long>();
+    r.false_positive_near_moving = rej.value("false_positive_near_moving", 0L);
     const auto& timing = j.at("timing");
     r.median_frame_ms = number(timing, "median_frame_ms");
     r.rejection_ms = number(timing, "rejection_ms");

@@ -38,6 +38,7 @@ struct RunRecord {
   double rpe_rot_rmse = NAN, rpe_rot_std = NAN;      // deg
   double precision = NAN, recall = NAN;              // rejection vs ground truth
   long true_positive = 0, false_positive = 0, false_negative = 0, true_negative = 0;
+  long false_positive_near_moving = 0;  // of false_positive: within 4 px of a mover
   double median_frame_ms = NAN, rejection_ms = NAN;
   double moving_share = NAN;  // from the dataset record
   double seconds = 0;         // wall time of the run

@@ -126,6 +126,8 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
   options.quiet = true;
   options.detector_seed = static_cast<uint64_t>(job.seed);
   options.detector_overrides = cell_overrides(plan, cell, ParameterTarget::kDetector);
+  for (const auto& setting : cell_overrides(plan, cell, ParameterTarget::kRejection))
+    cli::apply_rejection_setting(options, setting, "rejection." + setting.key);
   options.stats_csv = (fs::path(out.path()) / "stats.csv").string();
   try {
     const cli::RunSummary s = cli::run_sequence(options);
@@ -140,6 +142,7 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
       r.recall = s.score.recall();
       r.true_positive = s.score.true_positive;
       r.false_positive = s.score.false_positive;
+      r.false_positive_near_moving = s.false_positive_near_moving;
       r.false_negative = s.score.false_negative;
       r.true_negative = s.score.true_negative;
     }

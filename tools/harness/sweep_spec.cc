@@ -42,10 +42,12 @@ ParameterKey resolve_parameter(const std::string& name) {
     if (name == a.name) return {name, a.target, a.key};
   if (starts_with(name, "scenario.")) return {name, ParameterTarget::kScenario, name.substr(9)};
   if (starts_with(name, "detector.")) return {name, ParameterTarget::kDetector, name.substr(9)};
+  if (starts_with(name, "rejection."))
+    return {name, ParameterTarget::kRejection, name.substr(10)};
   fail("--vary",
        "unknown parameter '" + name +
-           "' (use load, depth_noise, rgb_noise, miss_rate, latency, scenario.KEY or "
-           "detector.KEY)");
+           "' (use load, depth_noise, rgb_noise, miss_rate, latency, scenario.KEY, "
+           "detector.KEY or rejection.KEY)");
 }
 
 SweepParameter parse_sweep_parameter(const std::string& text, const std::string& where) {

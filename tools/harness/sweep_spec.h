@@ -14,11 +14,13 @@ namespace depot::harness {
 
 // Where a parameter acts: a key of the scenario file (rendering) or of the
 // simulated detector's configuration (SLAM).
-enum class ParameterTarget { kScenario, kDetector };
+enum class ParameterTarget { kScenario, kDetector, kRejection };
 
 // A parameter name as the user writes it, resolved. Accepted names:
 //   scenario.<key path>   any scenario key, e.g. scenario.sensor.rgb_noise
 //   detector.<key>        any simulated-detector key, e.g. detector.jitter
+//   rejection.<key>       our extensions of full: background_margin, ego_flow,
+//                         test_static
 //   load                  = scenario.dynamic_load (number, size, speed of actors)
 //   miss_rate, latency    = detector.miss_rate, detector.latency_frames
 //   depth_noise, rgb_noise = scenario.sensor.disparity_noise / rgb_noise

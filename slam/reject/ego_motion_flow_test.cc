@@ -1,0 +1,93 @@
+// The ego-motion flow test on synthetic flows: a camera motion seen by
+// static points at many depths, plus a patch that moves on its own.
+#include "slam/reject/ego_motion_flow.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include <opencv2/calib3d.hpp>
+
+#include "slam/reject/flow_test.h"
+
+namespace depot::slam {
+namespace {
+
+struct Scene {
+  std::vector<cv::Point2f> pixels, flow;
+  std::vector<float> depth;
+  std::vector<uint8_t> ok, moving;
+};
+
+// Camera moves by (R, t) from previous to current; static points at 1-4 m
+// give the flow of that motion (plus 0.2 px LK noise), points of a patch
+// also move 5 cm sideways in the world between the frames.
+Scene make_scene(const PinholeCamera& cam) {
+  Scene s;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(20, 620), v(20, 460), z(1.0f, 4.0f);
+  std::normal_distribution<float> noise(0.0f, 0.2f);
+  const cv::Matx33d r = [] {
+    cv::Matx33d m;
+    cv::Rodrigues(cv::Vec3d(0.004, -0.012, 0.002), m);  // about 0.7 deg
+    return m;
+  }();
+  const cv::Vec3d t(0.015, -0.004, 0.01);  // current camera -> previous camera
+  for (int i = 0; i < 300; ++i) {
+    const cv::Point2f px(u(rng), v(rng));
+    const float d = z(rng);
+    const bool patch = i < 40;
+    const Eigen::Vector3d p = cam.unproject(px.x, px.y, d);
+    cv::Vec3d world(p.x(), p.y(), p.z());
+    if (patch) world += cv::Vec3d(0.05, 0, 0);  // where it was one frame ago
+    const cv::Vec3d q = r * world + t;
+    const cv::Point2f prev(static_cast<float>(cam.fx * q[0] / q[2] + cam.cx),
+                           static_cast<float>(cam.fy * q[1] / q[2] + cam.cy));
+    s.pixels.push_back(px);
+    s.depth.push_back(d);
+    s.flow.push_back(px - prev + cv::Point2f(noise(rng), noise(rng)));
+    s.ok.push_back(1);
+    s.moving.push_back(patch);
+  }
+  return s;
+}
+
+TEST(EgoMotionFlow, SeparatesAMovingPatchFromStaticPointsAtAllDepths) {
+  const PinholeCamera cam;
+  const Scene s = make_scene(cam);
+  const EgoMotionModel model = fit_ego_motion(cam, s.pixels, s.depth, s.flow, s.ok, {});
+  ASSERT_TRUE(model.valid);
+  EXPECT_GE(model.inliers, 250);
+  int static_flagged = 0, moving_flagged = 0;
+  for (size_t i = 0; i < s.pixels.size(); ++i) {
+    const float r = ego_motion_residual(model, cam, s.pixels[i], s.depth[i], s.flow[i]);
+    ASSERT_TRUE(std::isfinite(r));
+    const bool flagged = r > scaled_px(EgoMotionParams().threshold_px, cam);
+    (s.moving[i] ? moving_flagged : static_flagged) += flagged;
+  }
+  EXPECT_EQ(static_flagged, 0);
+  EXPECT_GE(moving_flagged, 38);  // of 40 (5 cm at up to 4 m is at least 6 px)
+
+  // The paper's mean-flow test on the same flows: parallax and rotation make
+  // static flow vary across the image, so it cannot draw this line as well.
+  const FlowTestResult mean = mean_static_flow(s.flow, s.ok, {});
+  int mean_static_flagged = 0, mean_moving_flagged = 0;
+  for (size_t i = 0; i < s.pixels.size(); ++i)
+    (s.moving[i] ? mean_moving_flagged : mean_static_flagged) += flow_is_dynamic(s.flow[i], mean);
+  const int ego_errors = static_flagged + (40 - moving_flagged);
+  const int mean_errors = mean_static_flagged + (40 - mean_moving_flagged);
+  EXPECT_GT(mean_errors, ego_errors + 10);
+}
+
+TEST(EgoMotionFlow, NeedsEnoughPointsWithDepth) {
+  const PinholeCamera cam;
+  Scene s = make_scene(cam);
+  for (size_t i = 8; i < s.depth.size(); ++i) s.depth[i] = 0;  // no depth
+  const EgoMotionModel model = fit_ego_motion(cam, s.pixels, s.depth, s.flow, s.ok, {});
+  EXPECT_FALSE(model.valid);
+  EXPECT_TRUE(std::isnan(ego_motion_residual(model, cam, s.pixels[0], 2.0f, s.flow[0])));
+}
+
+}  // namespace
+}  // namespace depot::slam
