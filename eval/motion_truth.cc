@@ -104,17 +104,7 @@ double MotionTruth::moving_fraction(double timestamp) const {
 
 std::vector<uint8_t> MotionTruth::on_moving_object(
     double timestamp, const std::vector<cv::KeyPoint>& keypoints) const {
-  const std::string key = stamp_key(timestamp);
-  const cv::Mat labels = load_labels(key);
-  std::vector<uint8_t> out(keypoints.size(), 0);
-  auto moving = moving_ids_.find(key);
-  if (moving == moving_ids_.end()) return out;
-  for (size_t i = 0; i < keypoints.size(); ++i) {
-    const int x = std::clamp(static_cast<int>(std::lround(keypoints[i].pt.x)), 0, labels.cols - 1);
-    const int y = std::clamp(static_cast<int>(std::lround(keypoints[i].pt.y)), 0, labels.rows - 1);
-    out[i] = moving->second.count(labels.at<uint16_t>(y, x)) ? 1 : 0;
-  }
-  return out;
+  return near_moving_object(timestamp, keypoints, 0);
 }
 
 void RejectionScore::add(const std::vector<uint8_t>& keep, const std::vector<uint8_t>& moving) {

@@ -88,65 +88,63 @@ Table ablation_table(const SweepPlan& plan, const SweepSummary& s) {
   return t;
 }
 
-Table ate_against_orb_table(const SweepPlan& plan, const SweepSummary& s) {
+namespace {
+
+// One figure of Tables 3-4: orb's and the compared mode's value (means over
+// seeds), and optionally Eq. 9 between them.
+struct AgainstOrbMetric {
+  std::string name;
+  int decimals;
+  MeanStd CellModeSummary::*field;
+  bool improvement;
+};
+
+Table against_orb_table(const SweepPlan& plan, const SweepSummary& s, const std::string& title,
+                        const std::string& caption, const std::vector<AgainstOrbMetric>& metrics) {
   Table t;
   const std::string cmp = compared_mode(plan.spec);
-  t.title = "ATE against orb (paper Table 3)";
-  t.caption = "RMSE and S.D. of the absolute trajectory error (m), each averaged over seeds; "
-              "improvement by Eq. 9, rho = (orb - " + cmp + ") / orb.";
+  t.title = title;
+  t.caption = caption;
   if (!has_mode(plan.spec, "orb") || cmp.empty()) return t;
   add_cell_columns(plan, t);
-  for (const auto& name : {"orb RMSE", "orb S.D."}) t.columns.push_back({name, 4});
-  t.columns.push_back({cmp + " RMSE", 4});
-  t.columns.push_back({cmp + " S.D.", 4});
-  t.columns.push_back({"RMSE improvement", 1, false, " %"});
-  t.columns.push_back({"S.D. improvement", 1, false, " %"});
+  for (const auto& m : metrics) {
+    t.columns.push_back({"orb " + m.name, m.decimals});
+    t.columns.push_back({cmp + " " + m.name, m.decimals});
+    if (m.improvement) t.columns.push_back({m.name + " improvement", 1, false, " %"});
+  }
   for (size_t c = 0; c < plan.cells.size(); ++c) {
     const CellModeSummary& o = *s.find(c, "orb");
     const CellModeSummary& f = *s.find(c, cmp);
     auto row = cell_values(plan, c);
-    row.push_back(number(o.ate_rmse.mean));
-    row.push_back(number(o.ate_std.mean));
-    row.push_back(number(f.ate_rmse.mean));
-    row.push_back(number(f.ate_std.mean));
-    row.push_back(number(improvement(o.ate_rmse.mean, f.ate_rmse.mean)));
-    row.push_back(number(improvement(o.ate_std.mean, f.ate_std.mean)));
+    for (const auto& m : metrics) {
+      row.push_back(number((o.*m.field).mean));
+      row.push_back(number((f.*m.field).mean));
+      if (m.improvement) row.push_back(number(improvement((o.*m.field).mean, (f.*m.field).mean)));
+    }
     t.rows.push_back(row);
   }
   return t;
 }
 
+}  // namespace
+
+Table ate_against_orb_table(const SweepPlan& plan, const SweepSummary& s) {
+  return against_orb_table(
+      plan, s, "ATE against orb (paper Table 3)",
+      "RMSE and S.D. of the absolute trajectory error (m), each averaged over seeds; improvement "
+      "by Eq. 9, rho = (orb - " +
+          compared_mode(plan.spec) + ") / orb.",
+      {{"RMSE", 4, &CellModeSummary::ate_rmse, true}, {"S.D.", 4, &CellModeSummary::ate_std, true}});
+}
+
 Table rpe_against_orb_table(const SweepPlan& plan, const SweepSummary& s) {
-  Table t;
-  const std::string cmp = compared_mode(plan.spec);
-  t.title = "RPE against orb (paper Table 4)";
-  t.caption = "Relative pose error over 1 s: translation RMSE and S.D. (m) and rotation RMSE "
-              "(deg), each averaged over seeds; improvement by Eq. 9.";
-  if (!has_mode(plan.spec, "orb") || cmp.empty()) return t;
-  add_cell_columns(plan, t);
-  t.columns.push_back({"orb trans RMSE", 4});
-  t.columns.push_back({"orb trans S.D.", 4});
-  t.columns.push_back({cmp + " trans RMSE", 4});
-  t.columns.push_back({cmp + " trans S.D.", 4});
-  t.columns.push_back({"trans improvement", 1, false, " %"});
-  t.columns.push_back({"orb rot RMSE", 3});
-  t.columns.push_back({cmp + " rot RMSE", 3});
-  t.columns.push_back({"rot improvement", 1, false, " %"});
-  for (size_t c = 0; c < plan.cells.size(); ++c) {
-    const CellModeSummary& o = *s.find(c, "orb");
-    const CellModeSummary& f = *s.find(c, cmp);
-    auto row = cell_values(plan, c);
-    row.push_back(number(o.rpe_trans_rmse.mean));
-    row.push_back(number(o.rpe_trans_std.mean));
-    row.push_back(number(f.rpe_trans_rmse.mean));
-    row.push_back(number(f.rpe_trans_std.mean));
-    row.push_back(number(improvement(o.rpe_trans_rmse.mean, f.rpe_trans_rmse.mean)));
-    row.push_back(number(o.rpe_rot_rmse.mean));
-    row.push_back(number(f.rpe_rot_rmse.mean));
-    row.push_back(number(improvement(o.rpe_rot_rmse.mean, f.rpe_rot_rmse.mean)));
-    t.rows.push_back(row);
-  }
-  return t;
+  return against_orb_table(
+      plan, s, "RPE against orb (paper Table 4)",
+      "Relative pose error over 1 s: translation RMSE and S.D. (m) and rotation RMSE (deg), each "
+      "averaged over seeds; improvement by Eq. 9.",
+      {{"trans RMSE", 4, &CellModeSummary::rpe_trans_rmse, true},
+       {"trans S.D.", 4, &CellModeSummary::rpe_trans_std, true},
+       {"rot RMSE", 3, &CellModeSummary::rpe_rot_rmse, true}});
 }
 
 Table rejection_table(const SweepPlan& plan, const SweepSummary& s) {
