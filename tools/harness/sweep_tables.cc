@@ -66,7 +66,9 @@ Table ablation_table(const SweepPlan& plan, const SweepSummary& s) {
   t.caption = "ATE RMSE in m after SE(3) alignment, mean ± std over " +
               std::to_string(plan.spec.seeds) + " seed(s), " + std::to_string(plan.spec.frames) +
               " frames at " + std::to_string(plan.spec.width) +
-              " px. Moving px = share of pixels on moving objects (measured).";
+              " px. Moving px = share of pixels on moving objects (measured). ATE covers the frames "
+              "in each trajectory: a run that loses tracking for good has a short one (see the "
+              "tracked column of the rejection table).";
   add_cell_columns(plan, t);
   t.columns.push_back({"moving px", 1, false, " %"});
   for (const auto& mode : plan.spec.modes) t.columns.push_back({mode, 4, true});
