@@ -12,8 +12,8 @@
 namespace depot::eval {
 namespace {
 
-constexpr double kWidth = 640, kHeight = 400;
-constexpr double kLeft = 78, kRight = 150, kTop = 34, kBottom = 58;
+constexpr double kWidth = 670, kHeight = 400;
+constexpr double kLeft = 78, kRight = 180, kTop = 34, kBottom = 58;
 
 bool parse_number(const std::string& text, double* value) {
   char* end = nullptr;
