@@ -10,7 +10,8 @@ namespace {
 
 TableValue text(const std::string& s) { return {s, NAN, NAN}; }
 TableValue number(double mean, double std = NAN) { return {"", mean, std}; }
-TableValue number(const MeanStd& m) { return {"", m.mean, m.std}; }
+// One seed has no spread to show.
+TableValue number(const MeanStd& m) { return {"", m.mean, m.count > 1 ? m.std : NAN}; }
 
 double improvement(double baseline, double value) {
   if (!std::isfinite(baseline) || !std::isfinite(value) || baseline <= 0) return NAN;
