@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include "eval/improvement.h"
 #include "tests/support/render_helpers.h"
 #include "tests/support/slam_helpers.h"
@@ -20,7 +22,13 @@ TEST_P(ScenarioRegression, MeetsItsBounds) {
   const YAML::Node root = YAML::LoadFile(kBounds);
   const YAML::Node b = root["scenarios"][GetParam()];
   ASSERT_TRUE(b) << GetParam() << " has no bounds in " << kBounds;
-  const int frames = root["frames"].as<int>();
+  // The longer tier (CMake -DDEPOT_LONG_TESTS=ON, label scenario_long) runs
+  // the same checks over more frames.
+  int frames = root["frames"].as<int>();
+  if (const char* env = std::getenv("DEPOT_SCENARIO_FRAMES")) {
+    frames = std::atoi(env);
+    ASSERT_GE(frames, 30) << "DEPOT_SCENARIO_FRAMES must be a frame count >= 30, got " << env;
+  }
   std::string data = render_small({GetParam(), frames, 640, false});
   SlamOutcome full = run_slam_mode(data, slam::RejectionMode::kFull, false);
   SlamOutcome orb = run_slam_mode(data, slam::RejectionMode::kOrb, true);
