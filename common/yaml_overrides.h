@@ -21,8 +21,7 @@ YamlOverride parse_yaml_override(const std::string& text, const std::string& whe
 // Sets root[a][b][c] = value, creating maps on the way. Throws
 // Error("<where>: ...") when a part of the path is not a map or the value is
 // not valid YAML.
-void apply_yaml_override(YAML::Node& root, const YamlOverride& override_,
-                         const std::string& where);
+void apply_yaml_override(YAML::Node& root, const YamlOverride& override_, const std::string& where);
 
 // A map node holding all overrides (for settings read from a node).
 YAML::Node overrides_to_node(const std::vector<YamlOverride>& overrides, const std::string& where);

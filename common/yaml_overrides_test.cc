@@ -36,8 +36,9 @@ TEST(YamlOverrides, SetsNestedKeysKeepingSiblingsAndTypes) {
 
 TEST(YamlOverrides, RefusesToDescendIntoAScalar) {
   YAML::Node root = YAML::Load("frames: 10\n");
-  EXPECT_NE(error_of([&] { apply_yaml_override(root, {"frames.x", "1"}, "--set"); })
-                .find("'frames' is not a map"),
+  EXPECT_NE(error_of([&] {
+              apply_yaml_override(root, {"frames.x", "1"}, "--set");
+            }).find("'frames' is not a map"),
             std::string::npos);
 }
 

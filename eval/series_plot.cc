@@ -83,7 +83,9 @@ std::string render_series_plot_svg(const SeriesPlot& plot) {
     const double t = plot.log_y ? std::log10(std::max(v, 1e-300)) : v;
     return kTop + (kHeight - kTop - kBottom) * (1.0 - (t - y.lo) / y.span());
   };
-  auto to_x = [&](double v) { return kLeft + (kWidth - kLeft - kRight) * (v - x_lo) / (x_hi - x_lo); };
+  auto to_x = [&](double v) {
+    return kLeft + (kWidth - kLeft - kRight) * (v - x_lo) / (x_hi - x_lo);
+  };
   const double bottom = kHeight - kBottom, right = kWidth - kRight;
 
   SvgDocument svg(kWidth, kHeight);

@@ -10,8 +10,8 @@ namespace depot::eval {
 
 struct PlotSeries {
   std::string name;
-  std::string colour;     // "#rrggbb"
-  std::string dash;       // SVG dasharray, empty = solid
+  std::string colour;        // "#rrggbb"
+  std::string dash;          // SVG dasharray, empty = solid
   std::vector<double> mean;  // one per x level; NaN = no value (gap)
   std::vector<double> std;   // same length; NaN or 0 = no error bar
 };

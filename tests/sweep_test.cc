@@ -79,9 +79,23 @@ TEST(Sweep, ResumesAfterBeingKilledAndReports) {
   const fs::path sweep = kRoot / "load";
   fs::remove_all(sweep);
   fs::create_directories(kRoot);
-  const std::vector<std::string> args = {
-      "sweep", "run", "depot_walking_xyz", "-o", sweep.string(), "--vary", "load=0,1.5",
-      "--modes", "orb,full", "--seeds", "1", "--frames", "40", "--width", "160", "-j", "2"};
+  const std::vector<std::string> args = {"sweep",
+                                         "run",
+                                         "depot_walking_xyz",
+                                         "-o",
+                                         sweep.string(),
+                                         "--vary",
+                                         "load=0,1.5",
+                                         "--modes",
+                                         "orb,full",
+                                         "--seeds",
+                                         "1",
+                                         "--frames",
+                                         "40",
+                                         "--width",
+                                         "160",
+                                         "-j",
+                                         "2"};
 
   // Kill the sweep (SIGTERM, as a scheduler or `kill` would) after its first run.
   const pid_t pid = start_depot(args, kRoot / "load.log");
@@ -144,8 +158,7 @@ TEST(Sweep, RefusesBadGridsBeforeRunningAnything) {
   const test::DepotResult unknown =
       test::depot("sweep run depot_walking_xyz -o " + sweep.string() + " --vary speed=1,2");
   EXPECT_NE(unknown.code, 0);
-  EXPECT_NE(unknown.output.find("unknown parameter 'speed'"), std::string::npos)
-      << unknown.output;
+  EXPECT_NE(unknown.output.find("unknown parameter 'speed'"), std::string::npos) << unknown.output;
   const test::DepotResult range =
       test::depot("sweep run depot_walking_xyz -o " + sweep.string() + " --vary load=0,9");
   EXPECT_NE(range.code, 0);
@@ -172,9 +185,9 @@ TEST(Sweep, ReportRendersInHeadlessChromium) {
       "chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
       "--disable-background-networking --disable-component-update --disable-sync "
       "--hide-scrollbars --user-data-dir=" +
-      (kRoot / "chromium-profile").string() + " --window-size=1280,1400 --screenshot=" +
-      shot.string() + " file://" + html.string() + " > " + (kRoot / "chromium.log").string() +
-      " 2>&1";
+      (kRoot / "chromium-profile").string() +
+      " --window-size=1280,1400 --screenshot=" + shot.string() + " file://" + html.string() +
+      " > " + (kRoot / "chromium.log").string() + " 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0)
       << "headless chromium failed (tools/install-deps.sh installs it): "
       << read(kRoot / "chromium.log");

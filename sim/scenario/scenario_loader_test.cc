@@ -31,9 +31,13 @@ TEST(ScenarioOverrides, ChangeTheKeysTheyName) {
 }
 
 TEST(ScenarioOverrides, AreValidatedLikeTheFile) {
-  EXPECT_NE(error_of([] { load_scenario(kWalking, {{"sensor.bogus", "1"}}); }).find("bogus"),
+  EXPECT_NE(error_of([] {
+              load_scenario(kWalking, {{"sensor.bogus", "1"}});
+            }).find("bogus"),
             std::string::npos);
-  EXPECT_NE(error_of([] { load_scenario(kWalking, {{"dynamic_load", "9"}}); }).find("dynamic_load"),
+  EXPECT_NE(error_of([] {
+              load_scenario(kWalking, {{"dynamic_load", "9"}});
+            }).find("dynamic_load"),
             std::string::npos);
   EXPECT_NE(error_of([] { load_scenario(kWalking, {{"sensor.rgb_noise", "loud"}}); }), "");
 }

@@ -8,8 +8,7 @@
 namespace depot::slam {
 
 EgoMotionModel fit_ego_motion(const PinholeCamera& camera, const std::vector<cv::Point2f>& pixels,
-                              const std::vector<float>& depth,
-                              const std::vector<cv::Point2f>& flow,
+                              const std::vector<float>& depth, const std::vector<cv::Point2f>& flow,
                               const std::vector<uint8_t>& ok, const EgoMotionParams& params) {
   EgoMotionModel model;
   std::vector<cv::Point3f> object;
@@ -27,9 +26,9 @@ EgoMotionModel fit_ego_motion(const PinholeCamera& camera, const std::vector<cv:
   // Consecutive frames: start from "no motion" and refine.
   cv::Mat rvec = cv::Mat::zeros(3, 1, CV_64F), tvec = cv::Mat::zeros(3, 1, CV_64F);
   std::vector<int> inliers;
-  const bool found =
-      cv::solvePnPRansac(object, image, k, cv::noArray(), rvec, tvec, true, 100,
-                         scaled_px(params.ransac_px, camera), 0.99, inliers, cv::SOLVEPNP_ITERATIVE);
+  const bool found = cv::solvePnPRansac(object, image, k, cv::noArray(), rvec, tvec, true, 100,
+                                        scaled_px(params.ransac_px, camera), 0.99, inliers,
+                                        cv::SOLVEPNP_ITERATIVE);
   model.inliers = static_cast<int>(inliers.size());
   if (!found || model.inliers < params.min_inlier_share * model.points) return model;
   std::vector<cv::Point3f> in_object;
@@ -91,23 +90,6 @@ bool predict_static_previous(const EgoMotionModel& model, const PinholeCamera& c
 
 float distance_to_prediction(const cv::Point2f& seen, const cv::Point2f& near,
                              const cv::Point2f& far) {
-  return static_cast<float>(distance_to_segment(seen, near, far));
-}
-
-float ego_motion_residual(const EgoMotionModel& model, const PinholeCamera& camera,
-                          const cv::Point2f& pixel, float depth, const cv::Point2f& flow,
-                          float no_depth_min) {
-  if (!model.valid) return NAN;
-  const cv::Point2d seen(pixel.x - flow.x, pixel.y - flow.y);
-  cv::Point2d near, far;
-  if (depth > 0) {
-    if (!predict_previous(model, camera, pixel, depth, &near)) return NAN;
-    const cv::Point2d d = seen - near;
-    return static_cast<float>(std::sqrt(d.dot(d)));
-  }
-  if (!predict_previous(model, camera, pixel, no_depth_min, &near) ||
-      !predict_previous(model, camera, pixel, INFINITY, &far))
-    return NAN;
   return static_cast<float>(distance_to_segment(seen, near, far));
 }
 

@@ -16,16 +16,16 @@
 namespace depot::slam {
 
 struct EgoMotionParams {
-  float threshold_px = 2.0f;   // residual above which a point moves (at 640 px width)
-  float ransac_px = 1.5f;      // PnP RANSAC inlier threshold (at 640 px width)
-  int min_points = 12;         // reference points with depth needed for a fit
+  float threshold_px = 2.0f;      // residual above which a point moves (at 640 px width)
+  float ransac_px = 1.5f;         // PnP RANSAC inlier threshold (at 640 px width)
+  int min_points = 12;            // reference points with depth needed for a fit
   float min_inlier_share = 0.5f;  // of those; fewer means no trustworthy fit
   // A point without depth is beyond the sensor's range (or at an edge): it
   // is tested as lying anywhere from this depth (m) to infinity.
   float no_depth_min = 4.0f;
   // Guided re-tracking of tested points from their predicted position.
-  int refine_window = 9;   // px
-  int refine_levels = 1;   // pyramid levels above the full image
+  int refine_window = 9;           // px
+  int refine_levels = 1;           // pyramid levels above the full image
   float refine_max_error = 12.0f;  // LK mean abs difference (grey levels)
 };
 
@@ -39,18 +39,8 @@ struct EgoMotionModel {
 // Fits the motion from reference points: current pixel, depth (m, <= 0 =
 // none), LK flow (previous pixel = current - flow) and whether it tracked.
 EgoMotionModel fit_ego_motion(const PinholeCamera& camera, const std::vector<cv::Point2f>& pixels,
-                              const std::vector<float>& depth,
-                              const std::vector<cv::Point2f>& flow,
+                              const std::vector<float>& depth, const std::vector<cv::Point2f>& flow,
                               const std::vector<uint8_t>& ok, const EgoMotionParams& params);
-
-// Distance (px) between where the point was seen in the previous frame
-// (current - flow) and where the camera motion puts a static point at this
-// pixel and depth. Without depth (<= 0), the distance to the segment of
-// positions of a static point from `no_depth_min` to infinity. NaN without
-// a model.
-float ego_motion_residual(const EgoMotionModel& model, const PinholeCamera& camera,
-                          const cv::Point2f& pixel, float depth, const cv::Point2f& flow,
-                          float no_depth_min = 4.0f);
 
 // Where a static point seen at `pixel` was in the previous frame: at its
 // depth, or for no depth the ends of the segment from `no_depth_min` to

@@ -61,8 +61,9 @@ TEST(EgoMotionFlow, SeparatesAMovingPatchFromStaticPointsAtAllDepths) {
   EXPECT_GE(model.inliers, 250);
   int static_flagged = 0, moving_flagged = 0;
   for (size_t i = 0; i < s.pixels.size(); ++i) {
-    const float r = ego_motion_residual(model, cam, s.pixels[i], s.depth[i], s.flow[i]);
-    ASSERT_TRUE(std::isfinite(r));
+    cv::Point2f near, far;
+    ASSERT_TRUE(predict_static_previous(model, cam, s.pixels[i], s.depth[i], 4.0f, &near, &far));
+    const float r = distance_to_prediction(s.pixels[i] - s.flow[i], near, far);
     const bool flagged = r > scaled_px(EgoMotionParams().threshold_px, cam);
     (s.moving[i] ? moving_flagged : static_flagged) += flagged;
   }
@@ -86,7 +87,24 @@ TEST(EgoMotionFlow, NeedsEnoughPointsWithDepth) {
   for (size_t i = 8; i < s.depth.size(); ++i) s.depth[i] = 0;  // no depth
   const EgoMotionModel model = fit_ego_motion(cam, s.pixels, s.depth, s.flow, s.ok, {});
   EXPECT_FALSE(model.valid);
-  EXPECT_TRUE(std::isnan(ego_motion_residual(model, cam, s.pixels[0], 2.0f, s.flow[0])));
+  cv::Point2f near, far;
+  EXPECT_FALSE(predict_static_previous(model, cam, s.pixels[0], 2.0f, 4.0f, &near, &far));
+}
+
+TEST(EgoMotionFlow, PointsWithoutDepthAreTestedFromTheSensorRangeToInfinity) {
+  const PinholeCamera cam;
+  const Scene s = make_scene(cam);
+  const EgoMotionModel model = fit_ego_motion(cam, s.pixels, s.depth, s.flow, s.ok, {});
+  ASSERT_TRUE(model.valid);
+  // A static point far away (no depth): its flow lies on the predicted
+  // segment; the same pixel with the moving patch's flow does not.
+  const cv::Point2f pixel(320, 240);
+  cv::Point2f near, far;
+  ASSERT_TRUE(predict_static_previous(model, cam, pixel, 0.0f, 4.0f, &near, &far));
+  EXPECT_GT(cv::norm(near - far), 0.5);  // translation shifts near points more
+  const cv::Point2f at_10m = near + 0.6f * (far - near);
+  EXPECT_LT(distance_to_prediction(at_10m, near, far), 0.01f);
+  EXPECT_GT(distance_to_prediction(near + cv::Point2f(0, 8), near, far), 5.0f);
 }
 
 }  // namespace

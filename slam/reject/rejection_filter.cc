@@ -167,7 +167,8 @@ void RejectionFilter::filter_full(const FrameImages& images,
   // all of P when P is tested too.
   const auto tf = std::chrono::steady_clock::now();
   std::vector<size_t> reference;
-  const size_t wanted = ego ? 3 * params_.max_reference_points : params_.max_reference_points;
+  const size_t wanted =
+      std::max(1, ego ? 3 * params_.max_reference_points : params_.max_reference_points);
   const size_t step = test_p ? 1 : std::max<size_t>(1, p_index.size() / wanted);
   for (size_t k = 0; k < p_index.size(); k += step) reference.push_back(p_index[k]);
   std::vector<cv::Point2f> pts, flow;
@@ -186,7 +187,6 @@ void RejectionFilter::filter_full(const FrameImages& images,
     for (size_t i : reference) ref_depth.push_back(depth[i]);
     motion = fit_ego_motion(*images.camera, ref_pts, ref_depth, ref_flow, ref_ok, params_.ego);
   }
-  stats_.flow_ms += ms_since(tf);
   stats_.mean_flow = test.mean;
   stats_.z_threshold = test.z;
   stats_.ego_motion = motion.valid;
@@ -221,6 +221,7 @@ void RejectionFilter::filter_full(const FrameImages& images,
           !refined_ok[k] || distance_to_prediction(previous[k], near[k], far[k]) > ego_threshold;
     }
   }
+  stats_.flow_ms += ms_since(tf);  // flow, fit and guided re-tracking
   auto moves = [&](size_t j) {
     if (guided[j]) return guided_moves[j] != 0;
     return ok[j] && flow_is_dynamic(flow[j], test);

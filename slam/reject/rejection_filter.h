@@ -49,8 +49,8 @@ struct RejectionParams {
 struct RejectionStats {
   long frame = 0;
   int total = 0, z = 0, q = 0, q_to_p = 0, p = 0, kept = 0;
-  int p_rejected = 0;         // P points failing the flow test (test_static_points)
-  bool ego_motion = false;    // the flow test used a fitted camera motion
+  int p_rejected = 0;       // P points failing the flow test (test_static_points)
+  bool ego_motion = false;  // the flow test used a fitted camera motion
   int detections = 0;
   cv::Point2f mean_flow{0, 0};
   float z_threshold = 0;

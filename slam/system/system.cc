@@ -62,7 +62,8 @@ TrackResult System::track(const cv::Mat& bgr, const cv::Mat& depth, double times
   result.keypoints = static_cast<int>(keypoints.size());
   if (filter_) {
     std::vector<uint8_t> keep(keypoints.size(), 1);
-    filter_->filter(FrameImages{bgr, gray, depth, timestamp, next_frame_id_, &cam}, keypoints, keep);
+    filter_->filter(FrameImages{bgr, gray, depth, timestamp, next_frame_id_, &cam}, keypoints,
+                    keep);
     std::vector<cv::KeyPoint> kept;
     cv::Mat kept_desc;
     for (size_t i = 0; i < keypoints.size(); ++i) {

@@ -45,7 +45,8 @@ void add_set_option(CLI::App* cmd, std::vector<std::string>& settings) {
 }
 
 void run_render(const RenderArgs& a, const CLI::App& cmd) {
-  sim::Scenario scenario = sim::load_scenario(resolve_scenario(a.scenario), parse_overrides(a.settings));
+  sim::Scenario scenario =
+      sim::load_scenario(resolve_scenario(a.scenario), parse_overrides(a.settings));
   sim::RenderRequest r;
   r.dataset.output = a.output;
   r.dataset.overwrite = a.overwrite;
@@ -146,7 +147,7 @@ void register_sim_commands(CLI::App& app) {
   add_set_option(truth, truth_args->settings);
   truth->callback([truth_args, truth] {
     sim::Scenario scenario = sim::load_scenario(resolve_scenario(truth_args->scenario),
-                                                 parse_overrides(truth_args->settings));
+                                                parse_overrides(truth_args->settings));
     sim::RenderRequest r;
     r.dataset.output = truth_args->output;
     r.dataset.overwrite = truth_args->overwrite;

@@ -44,8 +44,8 @@ std::unique_ptr<slam::Detector> make_detector(const RunOptions& o, const std::st
     return std::make_unique<slam::FileDetector>(o.detections);
   }
   if (!o.detector_overrides.empty())
-    fail("--detector-set", "applies to the simulated detector only (edit the " + type +
-                               " detector's YAML instead)");
+    fail("--detector-set",
+         "applies to the simulated detector only (edit the " + type + " detector's YAML instead)");
   const auto& dnn = slam::dnn_detector_types();
   if (std::find(dnn.begin(), dnn.end(), type) == dnn.end())
     fail("--detector",

@@ -21,10 +21,10 @@ struct RunOptions {
   std::string mode = "orb";  // orb | orb+yolo | orb+lk | full
   std::string detector =
       "";  // sim | darknet | fastestdet | yolov5 | file ("" = sim on simulated data)
-  std::string detector_config;  // YAML for dnn detectors / the simulated detector
+  std::string detector_config;                   // YAML for dnn detectors / the simulated detector
   std::vector<YamlOverride> detector_overrides;  // simulated detector keys ("miss_rate=0.2")
-  std::string detections;       // detections file for --detector file
-  std::string classes;          // a-priori class table (default by detector)
+  std::string detections;                        // detections file for --detector file
+  std::string classes;                           // a-priori class table (default by detector)
   uint64_t detector_seed = 1;
   std::optional<size_t> frames;
   bool sync = false;

@@ -15,8 +15,6 @@
 #include "tools/harness/sweep_spec.h"
 
 #include "sim/scenario/scenario_loader.h"
-#include "slam/detect/sim_detector_config.h"
-#include "tools/depot/slam_runner.h"
 
 namespace fs = std::filesystem;
 
@@ -33,7 +31,9 @@ struct SweepArgs {
   std::string output;
 };
 
-std::string self_program() { return fs::read_symlink("/proc/self/exe").string(); }
+std::string self_program() {
+  return fs::read_symlink("/proc/self/exe").string();
+}
 
 harness::SweepSpec make_spec(const SweepArgs& a) {
   harness::SweepSpec spec;
@@ -50,29 +50,15 @@ harness::SweepSpec make_spec(const SweepArgs& a) {
   spec.sync_mapping = !a.threaded_mapping;
   spec.keep_data = a.keep_data;
   harness::validate(spec, "depot sweep run");
-  // Every cell's overrides must load before hours of work start.
-  const harness::SweepPlan plan = harness::make_sweep_plan(spec);
-  for (const auto& cell : plan.cells) {
-    sim::load_scenario(spec.scenarios[cell.scenario].path,
-                       harness::cell_overrides(plan, cell, harness::ParameterTarget::kScenario));
-    slam::load_sim_detector_config(
-        overrides_to_node(harness::cell_overrides(plan, cell, harness::ParameterTarget::kDetector),
-                          "--vary"),
-        "--vary detector");
-    RunOptions options;
-    for (const auto& s : harness::cell_overrides(plan, cell, harness::ParameterTarget::kRejection))
-      apply_rejection_setting(options, s, "--vary rejection." + s.key);
-  }
   return spec;
 }
 
-int report(const harness::SweepPlan& plan, const harness::SweepLayout& layout,
-           const std::vector<std::string>& figures, bool print_table) {
+void report(const harness::SweepPlan& plan, const harness::SweepLayout& layout,
+            const std::vector<std::string>& figures, bool print_table) {
   const harness::ReportFiles files = harness::write_sweep_report(plan, layout, figures);
   if (print_table) std::printf("%s", files.ablation_markdown.c_str());
   std::printf("report: %s (%zu of %zu runs)\ntables: %s\n", files.html.c_str(), files.runs_found,
               files.runs_expected, files.markdown.c_str());
-  return 0;
 }
 
 void execute(const harness::SweepPlan& plan, const harness::SweepLayout& layout, int workers,
@@ -82,12 +68,12 @@ void execute(const harness::SweepPlan& plan, const harness::SweepLayout& layout,
   options.workers = workers;
   const harness::SweepRunResult r = harness::run_sweep(plan, layout, options, interrupt_flag());
   if (r.interrupted)
-    fail(layout.root, "sweep interrupted; finished runs are kept, resume with `depot sweep resume " +
-                          layout.root + "`");
+    fail(layout.root,
+         "sweep interrupted; finished runs are kept, resume with `depot sweep resume " +
+             layout.root + "`");
   report(plan, layout, figures, true);
   if (r.failed || r.blocked)
-    fail(layout.root, std::to_string(r.failed) + " job(s) failed and " +
-                          std::to_string(r.blocked) +
+    fail(layout.root, std::to_string(r.failed) + " job(s) failed and " + std::to_string(r.blocked) +
                           " could not run (logs in " + layout.root +
                           "/logs); `depot sweep resume` retries them");
 }
@@ -95,8 +81,10 @@ void execute(const harness::SweepPlan& plan, const harness::SweepLayout& layout,
 void run_command(const SweepArgs& a) {
   const harness::SweepSpec spec = make_spec(a);
   const harness::SweepLayout layout{a.output};
-  harness::write_or_check_spec(layout, spec);
   const harness::SweepPlan plan = harness::make_sweep_plan(spec);
+  // Every cell's settings must load before anything is written or run.
+  harness::check_sweep_inputs(plan);
+  harness::write_or_check_spec(layout, spec);
   if (a.plan_only) {
     // For a cluster scheduler: every render job before the runs that read it.
     for (const auto& job : plan.jobs) {
@@ -115,7 +103,8 @@ void add_run_options(CLI::App* cmd, SweepArgs& a) {
       ->required();
   cmd->add_option("--vary", a.vary,
                   "PARAM=L1,L2,...: load, depth_noise, rgb_noise, miss_rate, latency, "
-                  "scenario.KEY, detector.KEY (repeatable: the grid is the product)");
+                  "scenario.KEY, detector.KEY, rejection.KEY (repeatable: the grid is the "
+                  "product)");
   cmd->add_option("--set", a.fixed, "PARAM=VALUE for every run (same names as --vary)");
   cmd->add_option("--modes", a.modes, "Modes, comma separated")
       ->delimiter(',')
@@ -163,6 +152,7 @@ void register_sweep_commands(CLI::App& app) {
   resume->callback([resume_args] {
     const harness::SweepLayout layout{resume_args->output};
     const harness::SweepPlan plan = harness::make_sweep_plan(harness::read_spec(layout));
+    harness::check_sweep_inputs(plan);  // the scenario files may have changed since
     execute(plan, layout, resume_args->workers, resume_args->figures);
   });
 

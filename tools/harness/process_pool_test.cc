@@ -31,8 +31,7 @@ struct PoolTest : ::testing::Test {
 
 TEST_F(PoolTest, RunsJobsLogsOutputAndBlocksOnFailedNeeds) {
   std::vector<ProcessJob> jobs = {shell("echo hello; echo oops >&2", "a.log"),
-                                  shell("exit 3", "b.log"),
-                                  shell("echo after a", "c.log", {0}),
+                                  shell("exit 3", "b.log"), shell("echo after a", "c.log", {0}),
                                   shell("echo never", "d.log", {1})};
   std::vector<JobOutcome> seen(jobs.size());
   std::atomic<bool> stop{false};

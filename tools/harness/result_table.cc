@@ -20,6 +20,14 @@ std::string display(const TableColumn& c, const TableValue& v) {
   return s;
 }
 
+// A Markdown cell: '|' would end it and a newline the row.
+std::string markdown_cell(const std::string& text) {
+  std::string out;
+  for (char c : text)
+    out += c == '|' ? std::string("\\|") : c == '\n' ? std::string(" ") : std::string(1, c);
+  return out;
+}
+
 std::string csv_field(const std::string& text) {
   if (text.find_first_of(",\"\n") == std::string::npos) return text;
   std::string out = "\"";
@@ -40,11 +48,20 @@ std::string html_escape(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -54,13 +71,14 @@ std::string to_markdown(const Table& t) {
   std::string out = "## " + t.title + "\n\n";
   if (!t.caption.empty()) out += t.caption + "\n\n";
   out += "|";
-  for (const auto& c : t.columns) out += " " + c.name + " |";
+  for (const auto& c : t.columns) out += " " + markdown_cell(c.name) + " |";
   out += "\n|";
   for (const auto& c : t.columns) out += c.decimals < 0 ? "---|" : "---:|";
   out += "\n";
   for (const auto& row : t.rows) {
     out += "|";
-    for (size_t k = 0; k < t.columns.size(); ++k) out += " " + display(t.columns[k], row[k]) + " |";
+    for (size_t k = 0; k < t.columns.size(); ++k)
+      out += " " + markdown_cell(display(t.columns[k], row[k])) + " |";
     out += "\n";
   }
   return out + "\n";

@@ -10,8 +10,7 @@
 namespace depot::harness {
 
 struct TableColumn {
-  TableColumn(std::string name_, int decimals_ = -1, bool with_std_ = false,
-              std::string unit_ = "")
+  TableColumn(std::string name_, int decimals_ = -1, bool with_std_ = false, std::string unit_ = "")
       : name(std::move(name_)), decimals(decimals_), with_std(with_std_), unit(std::move(unit_)) {}
   std::string name;
   int decimals = -1;      // -1: a text column

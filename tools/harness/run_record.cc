@@ -10,7 +10,9 @@ namespace depot::harness {
 namespace {
 
 // NaN <-> null, since JSON has no NaN.
-nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
+nlohmann::json number(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
+}
 double number(const nlohmann::json& j, const char* key) {
   const auto& v = j.at(key);
   return v.is_null() ? NAN : v.get<double>();

@@ -1,5 +1,7 @@
 #include "tools/harness/sweep_figures.h"
 
+#include <algorithm>
+#include <cstdlib>
 #include <map>
 
 #include "eval/series_plot.h"
@@ -7,6 +9,13 @@
 
 namespace depot::harness {
 namespace {
+
+// A level's position on a numeric axis (text levels keep their order).
+double level_order(const std::string& level) {
+  char* end = nullptr;
+  const double v = std::strtod(level.c_str(), &end);
+  return end != level.c_str() && *end == '\0' ? v : 0.0;
+}
 
 // Cells that differ only in parameter k, keyed by everything else.
 std::map<std::string, std::vector<size_t>> groups_along(const SweepPlan& plan, size_t k) {
@@ -21,15 +30,11 @@ std::map<std::string, std::vector<size_t>> groups_along(const SweepPlan& plan, s
   return groups;
 }
 
-std::string file_safe(std::string s) {
-  for (char& ch : s)
-    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '.' && ch != '-') ch = '_';
-  return s;
-}
-
+// `group_index` names the file when several figures share a parameter.
 void add_pair(const SweepPlan& plan, const SweepSummary& s, const std::vector<size_t>& cells,
               const std::vector<std::string>& levels, const std::string& x_label,
-              const std::string& group, const std::string& stem, std::vector<Figure>& out) {
+              const std::string& group, const std::string& group_index, const std::string& stem,
+              std::vector<Figure>& out) {
   eval::SeriesPlot ate;
   ate.title = "ATE RMSE vs " + x_label + (group.empty() ? "" : " (" + group + ")");
   ate.x_label = x_label;
@@ -37,8 +42,8 @@ void add_pair(const SweepPlan& plan, const SweepSummary& s, const std::vector<si
   ate.x_levels = levels;
   ate.log_y = true;
   eval::SeriesPlot rejection = ate;
-  rejection.title = "Rejection precision / recall vs " + x_label +
-                    (group.empty() ? "" : " (" + group + ")");
+  rejection.title =
+      "Rejection precision / recall vs " + x_label + (group.empty() ? "" : " (" + group + ")");
   rejection.y_label = "precision (solid), recall (dashed)";
   rejection.log_y = false;
   rejection.y_lo = 0.0;
@@ -66,7 +71,7 @@ void add_pair(const SweepPlan& plan, const SweepSummary& s, const std::vector<si
       rejection.series.push_back(r);
     }
   }
-  const std::string suffix = group.empty() ? "" : "__" + file_safe(group);
+  const std::string suffix = group_index.empty() ? "" : "__" + group_index;
   if (any_ate)
     out.push_back({"ate_vs_" + stem + suffix + ".svg", ate.title, render_series_plot_svg(ate)});
   if (any_rejection)
@@ -85,17 +90,23 @@ std::vector<Figure> sweep_figures(const SweepPlan& plan, const SweepSummary& s) 
       cells.push_back(c);
       names.push_back(plan.spec.scenarios[plan.cells[c].scenario].name);
     }
-    add_pair(plan, s, cells, names, "scenario", "", "scenario", out);
+    add_pair(plan, s, cells, names, "scenario", "", "", "scenario", out);
     return out;
   }
   for (size_t k = 0; k < plan.spec.vary.size(); ++k) {
     const std::string& name = plan.spec.vary[k].name;
-    for (const auto& [group, cells] : groups_along(plan, k)) {
+    const auto groups = groups_along(plan, k);
+    size_t index = 0;
+    for (auto [group, cells] : groups) {
+      // Numeric levels in increasing order, so lines do not zigzag.
+      std::stable_sort(cells.begin(), cells.end(), [&](size_t a, size_t b) {
+        return level_order(plan.cells[a].levels[k]) < level_order(plan.cells[b].levels[k]);
+      });
       std::vector<std::string> levels;
       for (size_t c : cells) levels.push_back(plan.cells[c].levels[k]);
-      // A single scenario needs no group label.
-      const bool one_group = groups_along(plan, k).size() == 1;
-      add_pair(plan, s, cells, levels, name, one_group ? "" : group, file_safe(name), out);
+      const bool one_group = groups.size() == 1;
+      add_pair(plan, s, cells, levels, name, one_group ? "" : group,
+               one_group ? "" : std::to_string(++index), file_safe(name), out);
     }
   }
   return out;
@@ -104,9 +115,7 @@ std::vector<Figure> sweep_figures(const SweepPlan& plan, const SweepSummary& s) 
 std::vector<std::string> default_figure_runs(const SweepPlan& plan) {
   std::vector<std::string> modes;
   const std::string cmp = compared_mode(plan.spec);
-  bool has_orb = false;
-  for (const auto& m : plan.spec.modes) has_orb = has_orb || m == "orb";
-  if (has_orb && !cmp.empty())
+  if (has_mode(plan.spec, "orb") && !cmp.empty())
     modes = {"orb", cmp};
   else
     modes = plan.spec.modes;

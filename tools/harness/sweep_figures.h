@@ -11,7 +11,7 @@
 namespace depot::harness {
 
 struct Figure {
-  std::string file;   // e.g. "ate_vs_load.svg"
+  std::string file;  // e.g. "ate_vs_load.svg"
   std::string title;
   std::string svg;
 };

@@ -16,6 +16,7 @@
 #include "eval/trajectory_plot.h"
 #include "sim/pipeline/render_dataset.h"
 #include "sim/scenario/scenario_loader.h"
+#include "slam/detect/sim_detector_config.h"
 #include "tools/depot/slam_runner.h"
 
 namespace fs = std::filesystem;
@@ -65,6 +66,19 @@ void add_accuracy(const std::vector<StampedPose>& truth, const cli::RunSummary& 
 }
 
 }  // namespace
+
+void check_sweep_inputs(const SweepPlan& plan) {
+  for (const auto& cell : plan.cells) {
+    sim::load_scenario(plan.spec.scenarios[cell.scenario].path,
+                       cell_overrides(plan, cell, ParameterTarget::kScenario));
+    slam::load_sim_detector_config(
+        overrides_to_node(cell_overrides(plan, cell, ParameterTarget::kDetector), "detector"),
+        cell.label + " (detector settings)");
+    cli::RunOptions options;
+    for (const auto& s : cell_overrides(plan, cell, ParameterTarget::kRejection))
+      cli::apply_rejection_setting(options, s, cell.label + " (rejection." + s.key + ")");
+  }
+}
 
 DatasetRecord run_render_job(const SweepPlan& plan, const SweepLayout& layout,
                              const SweepJob& job) {

@@ -10,8 +10,11 @@
 
 namespace depot::harness {
 
-DatasetRecord run_render_job(const SweepPlan& plan, const SweepLayout& layout,
-                             const SweepJob& job);
+// Loads every cell's scenario with its overrides and checks its detector and
+// rejection settings, so a bad grid fails in one line before any job runs.
+void check_sweep_inputs(const SweepPlan& plan);
+
+DatasetRecord run_render_job(const SweepPlan& plan, const SweepLayout& layout, const SweepJob& job);
 
 // A run whose tracking never starts is recorded with ok = false and its
 // reason; other errors (missing dataset, interruption) throw.

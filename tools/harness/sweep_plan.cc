@@ -2,6 +2,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 
 #include "common/error.h"
 #include "common/tum_io.h"
@@ -9,9 +11,6 @@
 namespace fs = std::filesystem;
 
 namespace depot::harness {
-namespace {
-
-// Letters, digits, '.', '-', '+' and '_' stay; anything else becomes '_'.
 std::string file_safe(const std::string& text) {
   std::string out = text;
   for (char& c : out)
@@ -21,20 +20,23 @@ std::string file_safe(const std::string& text) {
   return out;
 }
 
-}  // namespace
-
 SweepPlan make_sweep_plan(const SweepSpec& spec) {
   validate(spec, "sweep");
   SweepPlan plan;
   plan.spec = spec;
   size_t combinations = 1;
   for (const auto& p : spec.vary) combinations *= p.values.size();
+  // A dataset depends only on the scenario's settings: cells that differ in
+  // detector or rejection levels alone share their renders.
+  std::vector<std::string> dataset_keys;
+  std::set<std::string> ids;
   for (size_t s = 0; s < spec.scenarios.size(); ++s) {
     for (size_t c = 0; c < combinations; ++c) {
       SweepCell cell;
       cell.scenario = s;
       cell.id = file_safe(spec.scenarios[s].name);
       cell.label = spec.scenarios[s].name;
+      std::string dataset_key = cell.id;
       size_t rest = c;
       // The last parameter varies fastest.
       std::vector<std::string> levels(spec.vary.size());
@@ -43,31 +45,45 @@ SweepPlan make_sweep_plan(const SweepSpec& spec) {
         rest /= spec.vary[k].values.size();
       }
       for (size_t k = 0; k < spec.vary.size(); ++k) {
-        cell.id += "__" + file_safe(spec.vary[k].name) + "-" + file_safe(levels[k]);
+        const std::string part = "__" + file_safe(spec.vary[k].name) + "-" + file_safe(levels[k]);
+        cell.id += part;
+        if (resolve_parameter(spec.vary[k].name).target == ParameterTarget::kScenario)
+          dataset_key += part;
         cell.label += " " + spec.vary[k].name + "=" + levels[k];
       }
+      if (!ids.insert(cell.id).second)
+        fail("--vary", "two cells would share the folder '" + cell.id +
+                           "' (levels that differ only in punctuation)");
       cell.levels = levels;
       plan.cells.push_back(cell);
+      dataset_keys.push_back(dataset_key);
     }
   }
+  std::map<std::string, size_t> render_of;  // dataset id -> index in plan.jobs
   for (size_t c = 0; c < plan.cells.size(); ++c)
     for (int seed = 1; seed <= spec.seeds; ++seed) {
+      const std::string dataset_id = dataset_keys[c] + "__s" + std::to_string(seed);
+      if (render_of.count(dataset_id)) continue;
       SweepJob job;
       job.kind = JobKind::kRender;
       job.cell = c;
       job.seed = seed;
-      job.id = job.dataset_id = plan.cells[c].id + "__s" + std::to_string(seed);
+      job.id = job.dataset_id = dataset_id;
+      render_of[dataset_id] = plan.jobs.size();
       plan.jobs.push_back(job);
     }
-  const size_t renders = plan.jobs.size();
-  for (size_t r = 0; r < renders; ++r)
-    for (const auto& mode : spec.modes) {
-      SweepJob job = plan.jobs[r];
-      job.kind = JobKind::kSlam;
-      job.mode = mode;
-      job.id = job.dataset_id + "__" + file_safe(mode);
-      plan.jobs.push_back(job);
-    }
+  for (size_t c = 0; c < plan.cells.size(); ++c)
+    for (int seed = 1; seed <= spec.seeds; ++seed)
+      for (const auto& mode : spec.modes) {
+        SweepJob job;
+        job.kind = JobKind::kSlam;
+        job.cell = c;
+        job.seed = seed;
+        job.mode = mode;
+        job.dataset_id = dataset_keys[c] + "__s" + std::to_string(seed);
+        job.id = plan.cells[c].id + "__s" + std::to_string(seed) + "__" + file_safe(mode);
+        plan.jobs.push_back(job);
+      }
   return plan;
 }
 
@@ -91,7 +107,9 @@ std::vector<YamlOverride> cell_overrides(const SweepPlan& plan, const SweepCell&
   return out;
 }
 
-std::string SweepLayout::spec_file() const { return (fs::path(root) / "sweep.json").string(); }
+std::string SweepLayout::spec_file() const {
+  return (fs::path(root) / "sweep.json").string();
+}
 std::string SweepLayout::dataset_dir(const std::string& id) const {
   return (fs::path(root) / "data" / id).string();
 }
@@ -107,7 +125,9 @@ std::string SweepLayout::run_record(const std::string& id) const {
 std::string SweepLayout::log_file(const std::string& job_id) const {
   return (fs::path(root) / "logs" / (job_id + ".log")).string();
 }
-std::string SweepLayout::report_dir() const { return (fs::path(root) / "report").string(); }
+std::string SweepLayout::report_dir() const {
+  return (fs::path(root) / "report").string();
+}
 
 bool job_finished(const SweepLayout& layout, const SweepJob& job) {
   return fs::is_regular_file(job.kind == JobKind::kRender ? layout.dataset_record(job.id)

@@ -28,13 +28,19 @@ struct SweepJob {
   int seed = 1;
   std::string mode;        // slam jobs only
   std::string dataset_id;  // the dataset a slam job reads (its own id for render)
+  // render: a cell with this dataset's scenario settings; slam: its cell
 };
 
 struct SweepPlan {
   SweepSpec spec;
   std::vector<SweepCell> cells;
-  std::vector<SweepJob> jobs;  // all render jobs first, then slam jobs
+  // All render jobs first, then slam jobs. Cells that differ only in
+  // detector or rejection levels share a dataset (one render per seed).
+  std::vector<SweepJob> jobs;
 };
+
+// Letters, digits, '.', '-', '+' and '_' stay; anything else becomes '_'.
+std::string file_safe(const std::string& text);
 
 SweepPlan make_sweep_plan(const SweepSpec& spec);
 
@@ -48,13 +54,13 @@ std::vector<YamlOverride> cell_overrides(const SweepPlan& plan, const SweepCell&
 // Where a sweep keeps its files, under one root folder.
 struct SweepLayout {
   std::string root;
-  std::string spec_file() const;                          // sweep.json
-  std::string dataset_dir(const std::string& id) const;   // data/<id>/
+  std::string spec_file() const;                            // sweep.json
+  std::string dataset_dir(const std::string& id) const;     // data/<id>/
   std::string dataset_record(const std::string& id) const;  // data/<id>.json
-  std::string run_dir(const std::string& id) const;       // runs/<id>/
-  std::string run_record(const std::string& id) const;    // runs/<id>/result.json
-  std::string log_file(const std::string& job_id) const;  // logs/<id>.log
-  std::string report_dir() const;                         // report/
+  std::string run_dir(const std::string& id) const;         // runs/<id>/
+  std::string run_record(const std::string& id) const;      // runs/<id>/result.json
+  std::string log_file(const std::string& job_id) const;    // logs/<id>.log
+  std::string report_dir() const;                           // report/
 };
 
 // A job is finished when its record exists (records are written last and

@@ -29,16 +29,24 @@ TEST(SweepPlan, ExpandsTheGridIntoCellsAndJobsWithUniqueIds) {
   ASSERT_EQ(plan.cells.size(), 6u);
   EXPECT_EQ(plan.cells[1].id, "depot_walking_xyz__load-0__miss_rate-0.3");
   EXPECT_EQ(plan.cells[1].label, "depot_walking_xyz load=0 miss_rate=0.3");
-  ASSERT_EQ(plan.jobs.size(), 6u * 2 + 6u * 2 * 2);
+  // Renders per load level and seed only: miss_rate acts on the detector.
+  ASSERT_EQ(plan.jobs.size(), 3u * 2 + 6u * 2 * 2);
   std::set<std::string> ids;
   for (const auto& job : plan.jobs) EXPECT_TRUE(ids.insert(job.id).second) << job.id;
-  const SweepJob& run = find_job(plan, "depot_walking_xyz__load-2__miss_rate-0.05__s2__orb+yolo",
-                                 "sweep");
+  const SweepJob& run =
+      find_job(plan, "depot_walking_xyz__load-2__miss_rate-0.05__s2__orb+yolo", "sweep");
   EXPECT_EQ(run.kind, JobKind::kSlam);
-  EXPECT_EQ(run.dataset_id, "depot_walking_xyz__load-2__miss_rate-0.05__s2");
+  EXPECT_EQ(run.dataset_id, "depot_walking_xyz__load-2__s2");
+  EXPECT_EQ(find_job(plan, run.dataset_id, "sweep").kind, JobKind::kRender);
   EXPECT_EQ(run.seed, 2);
   EXPECT_NE(error_of([&] { find_job(plan, "nope", "sweep"); }).find("no job 'nope'"),
             std::string::npos);
+}
+
+TEST(SweepPlan, RefusesLevelsThatWouldShareAFolder) {
+  SweepSpec s = grid_spec();
+  s.vary = {{"scenario.name", {"a b", "a_b"}}};
+  EXPECT_NE(error_of([&] { make_sweep_plan(s); }).find("share the folder"), std::string::npos);
 }
 
 TEST(SweepPlan, SendsEachParameterToItsTarget) {

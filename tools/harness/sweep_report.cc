@@ -60,9 +60,11 @@ std::string spec_html(const SweepPlan& plan, const SweepSummary& summary) {
     out += "<li>fixed: <code>" + html_escape(p.name) + "=" + html_escape(p.values[0]) +
            "</code></li>\n";
   out += "<li>modes: ";
-  for (size_t i = 0; i < spec.modes.size(); ++i) out += (i ? ", " : "") + html_escape(spec.modes[i]);
+  for (size_t i = 0; i < spec.modes.size(); ++i)
+    out += (i ? ", " : "") + html_escape(spec.modes[i]);
   out += "</li>\n<li>" + std::to_string(spec.seeds) + " seed(s), " + std::to_string(spec.frames) +
-         " frames at " + std::to_string(spec.width) + " px, simulated detector at its default "
+         " frames at " + std::to_string(spec.width) +
+         " px, simulated detector at its default "
          "error level unless a detector parameter is varied, local mapping " +
          (spec.sync_mapping ? "in the tracking thread (reproducible)" : "threaded") +
          "</li>\n</ul>\n";
@@ -116,6 +118,7 @@ ReportFiles write_sweep_report(const SweepPlan& plan, const SweepLayout& layout,
     figures_html += "<div class=\"figure\">" + inline_svg(f.svg) + "</div>\n";
   }
   std::string trajectories_html;
+  for (const auto& id : figure_runs) find_job(plan, id, "--figures");
   for (const auto& id : figure_runs.empty() ? default_figure_runs(plan) : figure_runs) {
     const std::string svg = (fs::path(layout.run_dir(id)) / "ate.svg").string();
     if (!fs::is_regular_file(svg)) continue;
@@ -123,18 +126,20 @@ ReportFiles write_sweep_report(const SweepPlan& plan, const SweepLayout& layout,
                          inline_svg(read_file(svg)) + "</div>\n";
   }
 
-  std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-                     "<title>depot sweep report</title>\n<style>" +
-                     std::string(kStyle) + "</style>\n</head>\n<body>\n";
+  std::string html =
+      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+      "<title>depot sweep report</title>\n<style>" +
+      std::string(kStyle) + "</style>\n</head>\n<body>\n";
   html += "<h1>depot sweep report</h1>\n<p>" + html_escape(layout.root) + "</p>\n";
   html += spec_html(plan, summary);
   if (!figures_html.empty())
     html += "<h2>Plots</h2>\n<div class=\"figures\">\n" + figures_html + "</div>\n";
   html += tables_html;
   if (!trajectories_html.empty())
-    html += "<h2>Trajectories (ground truth vs estimate, coloured by ATE; paper Figs. 6-7)</h2>\n"
-            "<div class=\"figures\">\n" +
-            trajectories_html + "</div>\n";
+    html +=
+        "<h2>Trajectories (ground truth vs estimate, coloured by ATE; paper Figs. 6-7)</h2>\n"
+        "<div class=\"figures\">\n" +
+        trajectories_html + "</div>\n";
   html += to_html(tables[4].table);
   html += "</body>\n</html>\n";
   files.html = (fs::path(dir) / "report.html").string();

@@ -11,13 +11,14 @@
 namespace depot::harness {
 
 struct ReportFiles {
-  std::string html;      // report/report.html
-  std::string markdown;  // report/tables.md
+  std::string html;               // report/report.html
+  std::string markdown;           // report/tables.md
   std::string ablation_markdown;  // the Table 2 block, for the terminal
   size_t runs_found = 0, runs_expected = 0;
 };
 
-// `figure_runs`: run ids whose trajectory figures to embed (empty = default).
+// `figure_runs`: run ids whose trajectory figures to embed (empty = default);
+// an id that is not a run of the plan throws Error("--figures: ...").
 ReportFiles write_sweep_report(const SweepPlan& plan, const SweepLayout& layout,
                                const std::vector<std::string>& figure_runs = {});
 

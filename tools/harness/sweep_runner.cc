@@ -1,5 +1,9 @@
 #include "tools/harness/sweep_runner.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +18,27 @@ namespace fs = std::filesystem;
 
 namespace depot::harness {
 namespace {
+
+// One runner per sweep folder: a second would run the same jobs and remove
+// datasets and staged folders the first still uses.
+class FolderLock {
+ public:
+  explicit FolderLock(const std::string& root) {
+    const std::string path = (fs::path(root) / ".lock").string();
+    fd_ = open(path.c_str(), O_CREAT | O_RDWR, 0644);
+    if (fd_ < 0) fail(path, "cannot create the sweep's lock file");
+    if (flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      close(fd_);
+      fail(root, "another `depot sweep` is running in this folder");
+    }
+  }
+  ~FolderLock() { close(fd_); }
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
 
 // Staged folders ("<name>.partial-<pid>") of jobs that were killed.
 void remove_leftovers(const SweepLayout& layout) {
@@ -31,8 +56,8 @@ std::string describe(const SweepJob& job, const SweepLayout& layout) {
   char buf[256];
   if (job.kind == JobKind::kRender) {
     const DatasetRecord d = read_dataset_record(layout.dataset_record(job.id));
-    std::snprintf(buf, sizeof(buf), "rendered %s: %d frames, %.1f %% moving pixels",
-                  job.id.c_str(), d.frames, 100 * d.moving_share_mean);
+    std::snprintf(buf, sizeof(buf), "rendered %s: %d frames, %.1f %% moving pixels", job.id.c_str(),
+                  d.frames, 100 * d.moving_share_mean);
   } else {
     const RunRecord r = read_run_record(layout.run_record(job.id));
     if (!r.ok)
@@ -58,6 +83,7 @@ SweepRunResult run_sweep(const SweepPlan& plan, const SweepLayout& layout,
                          const SweepRunOptions& options, const std::atomic<bool>& stop) {
   SweepRunResult result;
   result.jobs = plan.jobs.size();
+  const FolderLock lock(layout.root);
   remove_leftovers(layout);
 
   // Which runs are left, and which datasets they need (re-rendered if a
@@ -94,9 +120,8 @@ SweepRunResult run_sweep(const SweepPlan& plan, const SweepLayout& layout,
       needs.push_back(processes.size() - 1);
     }
     for (size_t r : it->second) {
-      processes.push_back(
-          {job_command(options.program, layout, plan.jobs[r]), layout.log_file(plan.jobs[r].id),
-           needs});
+      processes.push_back({job_command(options.program, layout, plan.jobs[r]),
+                           layout.log_file(plan.jobs[r].id), needs});
       plan_index.push_back(r);
     }
   }
@@ -106,7 +131,8 @@ SweepRunResult run_sweep(const SweepPlan& plan, const SweepLayout& layout,
   const auto start = std::chrono::steady_clock::now();
   size_t done = 0;
   if (options.progress)
-    std::fprintf(stderr, "sweep: %zu jobs in %s, %zu already finished, %zu to run on %d worker(s)\n",
+    std::fprintf(stderr,
+                 "sweep: %zu jobs in %s, %zu already finished, %zu to run on %d worker(s)\n",
                  result.jobs, layout.root.c_str(), result.already_finished, processes.size(),
                  options.workers);
 
@@ -114,6 +140,11 @@ SweepRunResult run_sweep(const SweepPlan& plan, const SweepLayout& layout,
     const SweepJob& job = plan.jobs[plan_index[p]];
     ++done;
     std::string line;
+    if (stop.load() && outcome.state != JobState::kSucceeded) {
+      // Stopped by the same Ctrl-C as the sweep: not a failure, keep its data.
+      if (options.progress) std::fprintf(stderr, "sweep: %s interrupted\n", job.id.c_str());
+      return;
+    }
     if (outcome.state == JobState::kSucceeded) {
       try {
         line = describe(job, layout);

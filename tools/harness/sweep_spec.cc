@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <set>
+#include <utility>
 
 #include "common/error.h"
 
@@ -19,13 +20,14 @@ nlohmann::json parameter_json(const SweepParameter& p) {
 std::vector<SweepParameter> parameters_from_json(const nlohmann::json& j) {
   std::vector<SweepParameter> out;
   for (const auto& p : j)
-    out.push_back({p.at("name").get<std::string>(), p.at("values").get<std::vector<std::string>>()});
+    out.push_back(
+        {p.at("name").get<std::string>(), p.at("values").get<std::vector<std::string>>()});
   return out;
 }
 
 }  // namespace
 
-ParameterKey resolve_parameter(const std::string& name) {
+ParameterKey resolve_parameter(const std::string& name, const std::string& where) {
   struct Alias {
     const char* name;
     ParameterTarget target;
@@ -42,18 +44,16 @@ ParameterKey resolve_parameter(const std::string& name) {
     if (name == a.name) return {name, a.target, a.key};
   if (starts_with(name, "scenario.")) return {name, ParameterTarget::kScenario, name.substr(9)};
   if (starts_with(name, "detector.")) return {name, ParameterTarget::kDetector, name.substr(9)};
-  if (starts_with(name, "rejection."))
-    return {name, ParameterTarget::kRejection, name.substr(10)};
-  fail("--vary",
-       "unknown parameter '" + name +
-           "' (use load, depth_noise, rgb_noise, miss_rate, latency, scenario.KEY, "
-           "detector.KEY or rejection.KEY)");
+  if (starts_with(name, "rejection.")) return {name, ParameterTarget::kRejection, name.substr(10)};
+  fail(where, "unknown parameter '" + name +
+                  "' (use load, depth_noise, rgb_noise, miss_rate, latency, scenario.KEY, "
+                  "detector.KEY or rejection.KEY)");
 }
 
 SweepParameter parse_sweep_parameter(const std::string& text, const std::string& where) {
   const YamlOverride o = parse_yaml_override(text, where);
   SweepParameter p{o.key, {}};
-  resolve_parameter(p.name);
+  resolve_parameter(p.name, where);
   size_t start = 0;
   while (true) {
     const size_t comma = o.value.find(',', start);
@@ -81,12 +81,18 @@ void validate(const SweepSpec& spec, const std::string& where) {
   std::set<std::string> names;
   for (const auto& s : spec.scenarios)
     if (!names.insert(s.name).second) fail(where, "scenario '" + s.name + "' given twice");
-  std::set<std::string> params;
+  // Two names may reach one setting (load = scenario.dynamic_load), and a
+  // key may contain another (scenario.sensor and scenario.sensor.rgb_noise):
+  // either would silently overwrite a level.
+  std::vector<std::pair<std::string, std::string>> keys;  // "target:key" -> name
   for (const auto* list : {&spec.vary, &spec.fixed})
     for (const auto& p : *list) {
-      resolve_parameter(p.name);
-      if (!params.insert(p.name).second)
-        fail(where, "parameter '" + p.name + "' is set more than once");
+      const ParameterKey k = resolve_parameter(p.name, where);
+      const std::string full = std::to_string(static_cast<int>(k.target)) + ":" + k.key;
+      for (const auto& [other, other_name] : keys)
+        if (other == full || other.rfind(full + ".", 0) == 0 || full.rfind(other + ".", 0) == 0)
+          fail(where, "parameters '" + other_name + "' and '" + p.name + "' set the same thing");
+      keys.emplace_back(full, p.name);
       if (p.values.empty()) fail(where, "parameter '" + p.name + "' has no level");
       std::set<std::string> levels(p.values.begin(), p.values.end());
       if (levels.size() != p.values.size())
@@ -105,10 +111,14 @@ nlohmann::json to_json(const SweepSpec& spec) {
   nlohmann::json vary = nlohmann::json::array(), fixed = nlohmann::json::array();
   for (const auto& p : spec.vary) vary.push_back(parameter_json(p));
   for (const auto& p : spec.fixed) fixed.push_back(parameter_json(p));
-  return {{"scenarios", scenarios},       {"vary", vary},
-          {"fixed", fixed},               {"modes", spec.modes},
-          {"seeds", spec.seeds},          {"frames", spec.frames},
-          {"width", spec.width},          {"sync_mapping", spec.sync_mapping},
+  return {{"scenarios", scenarios},
+          {"vary", vary},
+          {"fixed", fixed},
+          {"modes", spec.modes},
+          {"seeds", spec.seeds},
+          {"frames", spec.frames},
+          {"width", spec.width},
+          {"sync_mapping", spec.sync_mapping},
           {"keep_data", spec.keep_data}};
 }
 

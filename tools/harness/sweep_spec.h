@@ -12,8 +12,8 @@
 
 namespace depot::harness {
 
-// Where a parameter acts: a key of the scenario file (rendering) or of the
-// simulated detector's configuration (SLAM).
+// Where a parameter acts: a key of the scenario file (rendering), of the
+// simulated detector's configuration, or of the rejection's extensions (SLAM).
 enum class ParameterTarget { kScenario, kDetector, kRejection };
 
 // A parameter name as the user writes it, resolved. Accepted names:
@@ -29,8 +29,8 @@ struct ParameterKey {
   ParameterTarget target = ParameterTarget::kScenario;
   std::string key;  // key inside its target
 };
-// Throws Error("--vary: unknown parameter ...") for any other name.
-ParameterKey resolve_parameter(const std::string& name);
+// Throws Error("<where>: unknown parameter ...") for any other name.
+ParameterKey resolve_parameter(const std::string& name, const std::string& where = "--vary");
 
 struct SweepParameter {
   std::string name;                 // as written ("load")
@@ -47,7 +47,7 @@ struct SweepScenario {
 
 struct SweepSpec {
   std::vector<SweepScenario> scenarios;
-  std::vector<SweepParameter> vary;  // the grid is their product
+  std::vector<SweepParameter> vary;   // the grid is their product
   std::vector<SweepParameter> fixed;  // one value each, applied to every run
   std::vector<std::string> modes = {"orb", "orb+yolo", "orb+lk", "full"};
   int seeds = 3;

@@ -46,7 +46,14 @@ TEST(SweepSpec, RejectsUnknownNamesAndBadGrids) {
   EXPECT_NE(error_of([&] { validate(s, "x"); }).find("repeats a level"), std::string::npos);
   s = small_spec();
   s.fixed.push_back({"load", {"2"}});
-  EXPECT_NE(error_of([&] { validate(s, "x"); }).find("more than once"), std::string::npos);
+  EXPECT_NE(error_of([&] { validate(s, "x"); }).find("set the same thing"), std::string::npos);
+  s = small_spec();  // an alias and its full name reach one setting
+  s.vary.push_back({"scenario.dynamic_load", {"2"}});
+  EXPECT_NE(error_of([&] { validate(s, "x"); }).find("'load' and 'scenario.dynamic_load'"),
+            std::string::npos);
+  s = small_spec();  // a key and a key inside it
+  s.vary = {{"scenario.sensor", {"{}"}}, {"rgb_noise", {"1"}}};
+  EXPECT_NE(error_of([&] { validate(s, "x"); }).find("set the same thing"), std::string::npos);
   s = small_spec();
   s.modes = {"orb+slam"};
   EXPECT_NE(error_of([&] { validate(s, "x"); }).find("unknown mode"), std::string::npos);

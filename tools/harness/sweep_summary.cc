@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <map>
 
+#include "eval/improvement.h"
+
 namespace fs = std::filesystem;
 
 namespace depot::harness {
@@ -20,6 +22,21 @@ MeanStd mean_std(const std::vector<double>& values) {
     if (std::isfinite(v)) sq += (v - out.mean) * (v - out.mean);
   out.std = std::sqrt(sq / out.count);
   return out;
+}
+
+double paired_improvement(const CellModeSummary& baseline, const CellModeSummary& ours,
+                          double RunRecord::*figure) {
+  double sum_base = 0, sum_ours = 0;
+  int n = 0;
+  for (const auto& [seed, run] : ours.runs_by_seed) {
+    auto it = baseline.runs_by_seed.find(seed);
+    if (it == baseline.runs_by_seed.end()) continue;
+    const double b = it->second.*figure, o = run.*figure;
+    if (!std::isfinite(b) || !std::isfinite(o)) continue;
+    sum_base += b, sum_ours += o, ++n;
+  }
+  if (n == 0 || sum_base <= 0) return NAN;
+  return eval::improvement_percent(sum_base / n, sum_ours / n);
 }
 
 const CellModeSummary* SweepSummary::find(size_t cell, const std::string& mode) const {
@@ -50,6 +67,7 @@ SweepSummary summarize_records(const SweepPlan& plan, const std::vector<RunRecor
       e.mode = mode;
       std::vector<double> ate, ate_sd, rt, rt_sd, rr, rr_sd, p, r, tracked, moving;
       for (const RunRecord* run : groups[{c, mode}]) {
+        e.runs_by_seed[run->seed] = *run;
         ++e.runs;
         e.failed += !run->ok;
         e.lost += run->lost;

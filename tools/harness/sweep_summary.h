@@ -1,6 +1,7 @@
 #pragma once
 // The finished runs of a sweep gathered per cell and mode: mean and standard
 // deviation over seeds of each figure (population std, as numpy and evo).
+#include <map>
 #include <string>
 #include <vector>
 
@@ -21,16 +22,23 @@ MeanStd mean_std(const std::vector<double>& values);
 struct CellModeSummary {
   size_t cell = 0;
   std::string mode;
-  int runs = 0;    // records found
-  int failed = 0;  // of them, without a trajectory
-  int lost = 0;    // lost frames over all runs
+  int runs = 0;                           // records found
+  int failed = 0;                         // of them, without a trajectory
+  int lost = 0;                           // lost frames over all runs
   MeanStd ate_rmse, ate_std;              // m
   MeanStd rpe_trans_rmse, rpe_trans_std;  // m
   MeanStd rpe_rot_rmse, rpe_rot_std;      // deg
   MeanStd precision, recall;
   MeanStd tracked_share;  // frames in trajectory / frames
   MeanStd moving_share;   // pixels on moving objects
+  std::map<int, RunRecord> runs_by_seed;
 };
+
+// Eq. 9 of `ours` against `baseline` on one figure, from its means over the
+// seeds where both have a finite value (a failed run of one mode must not
+// compare different seeds). NaN when no seed pairs up.
+double paired_improvement(const CellModeSummary& baseline, const CellModeSummary& ours,
+                          double RunRecord::*figure);
 
 struct SweepSummary {
   std::vector<CellModeSummary> entries;  // cell-major, modes in spec order

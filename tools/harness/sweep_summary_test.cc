@@ -69,5 +69,24 @@ TEST(SweepSummary, GroupsRecordsByCellAndMode) {
   EXPECT_EQ(s.find(0, "orb+lk"), nullptr);
 }
 
+TEST(SweepSummary, Eq9ComparesOnlySeedsBothModesFinished) {
+  SweepSpec spec;
+  spec.scenarios = {{"walk", "/x/walk.yaml"}};
+  spec.modes = {"orb", "full"};
+  spec.seeds = 3;
+  const SweepPlan plan = make_sweep_plan(spec);
+  const SweepSummary s = summarize_records(
+      plan,
+      {record("walk__s1__orb", "orb", 1, 1.0, NAN), record("walk__s2__orb", "orb", 2, 0.5, NAN),
+       record("walk__s3__orb", "orb", 3, 0.3, NAN), record("walk__s1__full", "full", 1, 0.01, 0.5),
+       record("walk__s2__full", "full", 2, NAN, NAN),  // failed
+       record("walk__s3__full", "full", 3, 0.03, 0.5)});
+  // Seeds 1 and 3: orb 0.65, full 0.02.
+  EXPECT_NEAR(paired_improvement(*s.find(0, "orb"), *s.find(0, "full"), &RunRecord::ate_rmse),
+              100.0 * (0.65 - 0.02) / 0.65, 1e-9);
+  EXPECT_TRUE(
+      std::isnan(paired_improvement(*s.find(0, "orb"), *s.find(0, "full"), &RunRecord::precision)));
+}
+
 }  // namespace
 }  // namespace depot::harness

@@ -22,6 +22,8 @@ Table rejection_table(const SweepPlan& plan, const SweepSummary& summary);
 // Every run: its levels, seed, mode and figures.
 Table runs_table(const SweepPlan& plan, const SweepSummary& summary);
 
+bool has_mode(const SweepSpec& spec, const std::string& mode);
+
 // The mode compared against orb: "full" if run, else the last non-orb mode,
 // else "".
 std::string compared_mode(const SweepSpec& spec);
