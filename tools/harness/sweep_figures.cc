@@ -10,6 +10,15 @@
 namespace depot::harness {
 namespace {
 
+// One colour per mode in every report: orb red, orb+yolo blue, orb+lk
+// orange, full green.
+size_t mode_colour_index(const std::string& mode) {
+  static const char* modes[] = {"orb", "orb+yolo", "orb+lk", "full"};
+  for (size_t i = 0; i < 4; ++i)
+    if (mode == modes[i]) return i;
+  return 4;
+}
+
 // A level's position on a numeric axis (text levels keep their order).
 double level_order(const std::string& level) {
   char* end = nullptr;
@@ -49,11 +58,11 @@ void add_pair(const SweepPlan& plan, const SweepSummary& s, const std::vector<si
   rejection.y_lo = 0.0;
   rejection.y_hi = 1.0;
   bool any_ate = false, any_rejection = false;
-  for (size_t m = 0; m < plan.spec.modes.size(); ++m) {
-    const std::string& mode = plan.spec.modes[m];
-    eval::PlotSeries a{mode, eval::series_colour(m), "", {}, {}};
-    eval::PlotSeries p{mode + " precision", eval::series_colour(m), "", {}, {}};
-    eval::PlotSeries r{mode + " recall", eval::series_colour(m), "6 4", {}, {}};
+  for (const std::string& mode : plan.spec.modes) {
+    const std::string colour = eval::series_colour(mode_colour_index(mode));
+    eval::PlotSeries a{mode, colour, "", {}, {}};
+    eval::PlotSeries p{mode + " precision", colour, "", {}, {}};
+    eval::PlotSeries r{mode + " recall", colour, "6 4", {}, {}};
     for (size_t c : cells) {
       const CellModeSummary& e = *s.find(c, mode);
       a.mean.push_back(e.ate_rmse.mean);

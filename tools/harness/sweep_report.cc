@@ -26,7 +26,8 @@ th { background: #f0f3f7; text-align: left; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; }
 tbody tr:nth-child(even) { background: #fafafa; }
 .figures { display: flex; flex-wrap: wrap; gap: 16px; }
-.figure { border: 1px solid #e2e2e2; padding: 6px; background: #fff; }
+.figure { border: 1px solid #e2e2e2; padding: 6px; background: #fff; flex: 1 1 560px; max-width: 700px; }
+.figure.wide { flex-basis: 100%; max-width: 1300px; }
 .figure svg { display: block; max-width: 100%; height: auto; }
 .status { background: #f7f7e8; border: 1px solid #e0e0b0; padding: 8px 12px; display: inline-block; }
 code { background: #f3f3f3; padding: 1px 4px; }
@@ -122,7 +123,7 @@ ReportFiles write_sweep_report(const SweepPlan& plan, const SweepLayout& layout,
   for (const auto& id : figure_runs.empty() ? default_figure_runs(plan) : figure_runs) {
     const std::string svg = (fs::path(layout.run_dir(id)) / "ate.svg").string();
     if (!fs::is_regular_file(svg)) continue;
-    trajectories_html += "<div class=\"figure\"><p>" + html_escape(id) + "</p>" +
+    trajectories_html += "<div class=\"figure wide\"><p>" + html_escape(id) + "</p>" +
                          inline_svg(read_file(svg)) + "</div>\n";
   }
 
