@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "eval/svg_document.h"
+
 namespace depot::harness {
 namespace {
 
@@ -44,29 +46,6 @@ std::string csv_number(double v) {
 
 }  // namespace
 
-std::string html_escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 std::string to_markdown(const Table& t) {
   std::string out = "## " + t.title + "\n\n";
   if (!t.caption.empty()) out += t.caption + "\n\n";
@@ -106,16 +85,16 @@ std::string to_csv(const Table& t) {
 }
 
 std::string to_html(const Table& t) {
-  std::string out = "<h2>" + html_escape(t.title) + "</h2>\n";
-  if (!t.caption.empty()) out += "<p>" + html_escape(t.caption) + "</p>\n";
+  std::string out = "<h2>" + eval::xml_escape(t.title) + "</h2>\n";
+  if (!t.caption.empty()) out += "<p>" + eval::xml_escape(t.caption) + "</p>\n";
   out += "<table>\n<thead><tr>";
-  for (const auto& c : t.columns) out += "<th>" + html_escape(c.name) + "</th>";
+  for (const auto& c : t.columns) out += "<th>" + eval::xml_escape(c.name) + "</th>";
   out += "</tr></thead>\n<tbody>\n";
   for (const auto& row : t.rows) {
     out += "<tr>";
     for (size_t k = 0; k < t.columns.size(); ++k)
       out += std::string(t.columns[k].decimals < 0 ? "<td>" : "<td class=\"num\">") +
-             html_escape(display(t.columns[k], row[k])) + "</td>";
+             eval::xml_escape(display(t.columns[k], row[k])) + "</td>";
     out += "</tr>\n";
   }
   return out + "</tbody>\n</table>\n";

@@ -36,6 +36,4 @@ std::string to_markdown(const Table& table);
 std::string to_csv(const Table& table);
 std::string to_html(const Table& table);
 
-std::string html_escape(const std::string& text);
-
 }  // namespace depot::harness

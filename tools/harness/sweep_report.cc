@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "common/tum_io.h"
+#include "eval/svg_document.h"
 #include "tools/harness/result_table.h"
 #include "tools/harness/sweep_figures.h"
 #include "tools/harness/sweep_summary.h"
@@ -50,19 +51,20 @@ std::string spec_html(const SweepPlan& plan, const SweepSummary& summary) {
   const SweepSpec& spec = plan.spec;
   std::string out = "<ul>\n<li>scenarios: ";
   for (size_t i = 0; i < spec.scenarios.size(); ++i)
-    out += (i ? ", " : "") + html_escape(spec.scenarios[i].name);
+    out += (i ? ", " : "") + eval::xml_escape(spec.scenarios[i].name);
   out += "</li>\n";
   for (const auto& p : spec.vary) {
-    out += "<li>varied: <code>" + html_escape(p.name) + "</code> = ";
-    for (size_t i = 0; i < p.values.size(); ++i) out += (i ? ", " : "") + html_escape(p.values[i]);
+    out += "<li>varied: <code>" + eval::xml_escape(p.name) + "</code> = ";
+    for (size_t i = 0; i < p.values.size(); ++i)
+      out += (i ? ", " : "") + eval::xml_escape(p.values[i]);
     out += "</li>\n";
   }
   for (const auto& p : spec.fixed)
-    out += "<li>fixed: <code>" + html_escape(p.name) + "=" + html_escape(p.values[0]) +
+    out += "<li>fixed: <code>" + eval::xml_escape(p.name) + "=" + eval::xml_escape(p.values[0]) +
            "</code></li>\n";
   out += "<li>modes: ";
   for (size_t i = 0; i < spec.modes.size(); ++i)
-    out += (i ? ", " : "") + html_escape(spec.modes[i]);
+    out += (i ? ", " : "") + eval::xml_escape(spec.modes[i]);
   out += "</li>\n<li>" + std::to_string(spec.seeds) + " seed(s), " + std::to_string(spec.frames) +
          " frames at " + std::to_string(spec.width) +
          " px, simulated detector at its default "
@@ -123,7 +125,7 @@ ReportFiles write_sweep_report(const SweepPlan& plan, const SweepLayout& layout,
   for (const auto& id : figure_runs.empty() ? default_figure_runs(plan) : figure_runs) {
     const std::string svg = (fs::path(layout.run_dir(id)) / "ate.svg").string();
     if (!fs::is_regular_file(svg)) continue;
-    trajectories_html += "<div class=\"figure wide\"><p>" + html_escape(id) + "</p>" +
+    trajectories_html += "<div class=\"figure wide\"><p>" + eval::xml_escape(id) + "</p>" +
                          inline_svg(read_file(svg)) + "</div>\n";
   }
 
@@ -131,7 +133,7 @@ ReportFiles write_sweep_report(const SweepPlan& plan, const SweepLayout& layout,
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
       "<title>depot sweep report</title>\n<style>" +
       std::string(kStyle) + "</style>\n</head>\n<body>\n";
-  html += "<h1>depot sweep report</h1>\n<p>" + html_escape(layout.root) + "</p>\n";
+  html += "<h1>depot sweep report</h1>\n<p>" + eval::xml_escape(layout.root) + "</p>\n";
   html += spec_html(plan, summary);
   if (!figures_html.empty())
     html += "<h2>Plots</h2>\n<div class=\"figures\">\n" + figures_html + "</div>\n";
