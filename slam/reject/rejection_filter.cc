@@ -69,11 +69,6 @@ RejectionFilter::RejectionFilter(RejectionMode mode, AprioriClasses classes, Det
 
 void RejectionFilter::begin_frame(const FrameImages& images) {
   if (thread_) thread_->submit(images.bgr, images.timestamp, images.frame_id);
-  // The image pyramid for LK needs only this frame's grey image: build it
-  // while ORB features are extracted, like the detection.
-  if (mode_uses_flow(mode_))
-    pyramid_ = std::async(std::launch::async,
-                          [this, gray = images.gray.clone()] { flow_.next_frame(gray); });
 }
 
 void RejectionFilter::filter(const FrameImages& images, const std::vector<cv::KeyPoint>& keypoints,
@@ -90,10 +85,7 @@ void RejectionFilter::filter(const FrameImages& images, const std::vector<cv::Ke
 
   if (mode_uses_flow(mode_)) {
     const auto tf = std::chrono::steady_clock::now();
-    if (pyramid_.valid())
-      pyramid_.get();  // built in parallel with extraction (begin_frame)
-    else
-      flow_.next_frame(images.gray);
+    flow_.next_frame(images.gray);
     stats_.flow_ms += ms_since(tf);
   }
 

@@ -5,7 +5,6 @@
 //   orb+yolo every point inside a dynamic box
 //   orb+lk   points whose LK flow deviates from the mean flow (all points)
 //   full     Z rejected, Q kept only if its flow agrees with P's mean flow
-#include <future>
 #include <memory>
 #include <string>
 #include <vector>
@@ -90,7 +89,6 @@ class RejectionFilter : public KeypointFilter {
   RejectionParams params_;
   std::unique_ptr<DetectionThread> thread_;
   SparseFlow flow_;
-  std::future<void> pyramid_;  // this frame's LK pyramid, built during extraction
   RejectionStats stats_;
   std::vector<Detection> detections_;
   std::vector<cv::KeyPoint> keypoints_;
