@@ -49,7 +49,7 @@ void KeyFrame::sort_connections() {
 }
 
 void KeyFrame::update_connections() {
-  std::map<KeyFrame*, int> counter;
+  std::map<KeyFrame*, int, ById> counter;
   for (MapPoint* mp : map_points) {
     if (!mp || mp->bad) continue;
     for (auto& [kf, idx] : mp->observations)
@@ -58,7 +58,7 @@ void KeyFrame::update_connections() {
   if (counter.empty()) return;
   int best = 0;
   KeyFrame* best_kf = nullptr;
-  std::map<KeyFrame*, int> kept;
+  std::map<KeyFrame*, int, ById> kept;
   for (auto& [kf, w] : counter) {
     if (w > best || (w == best && best_kf && kf->id < best_kf->id)) best = w, best_kf = kf;
     if (w >= 15) kept[kf] = w;

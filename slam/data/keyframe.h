@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "common/pose.h"
+#include "slam/data/by_id.h"
 #include "slam/data/features.h"
 #include "slam/data/frame.h"
 
@@ -45,17 +46,17 @@ class KeyFrame {
   std::vector<KeyFrame*> covisibles_with_weight(int min_weight) const;
   int weight(KeyFrame* kf) const;
   KeyFrame* parent() const { return parent_; }
-  const std::set<KeyFrame*>& children() const { return children_; }
+  const std::set<KeyFrame*, ById>& children() const { return children_; }
   // Removes the keyframe from the graph (not the first one).
   void set_bad();
 
  private:
   void sort_connections();
-  std::map<KeyFrame*, int> connections_;
+  std::map<KeyFrame*, int, ById> connections_;
   std::vector<KeyFrame*> ordered_;
   std::vector<int> ordered_weights_;
   KeyFrame* parent_ = nullptr;
-  std::set<KeyFrame*> children_;
+  std::set<KeyFrame*, ById> children_;
   bool first_connection_ = true;
 };
 

@@ -7,17 +7,11 @@
 #include <set>
 #include <vector>
 
+#include "slam/data/by_id.h"
 #include "slam/data/keyframe.h"
 #include "slam/data/map_point.h"
 
 namespace depot::slam {
-
-struct ById {
-  template <typename T>
-  bool operator()(const T* a, const T* b) const {
-    return a->id < b->id;
-  }
-};
 
 class Map {
  public:

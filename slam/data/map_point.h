@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "slam/data/by_id.h"
 #include "slam/data/scale_levels.h"
 
 namespace depot::slam {
@@ -21,7 +22,7 @@ class MapPoint {
   cv::Mat descriptor;               // 1 x 32, the most representative
   Eigen::Vector3d normal{0, 0, 1};  // mean viewing direction
   float min_distance = 0, max_distance = 0;
-  std::map<KeyFrame*, size_t> observations;  // keyframe -> keypoint index
+  std::map<KeyFrame*, size_t, ById> observations;  // keyframe -> keypoint index
   KeyFrame* reference;
   long first_keyframe_id;
   int visible = 1, found = 1;  // tracking statistics

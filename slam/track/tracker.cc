@@ -245,7 +245,7 @@ bool Tracker::relocalize(Frame& frame, int& matches) {
 
 void Tracker::update_local_map(Frame& frame) {
   // Keyframes that see the frame's points, weighted by how many.
-  std::map<KeyFrame*, int> counter;
+  std::map<KeyFrame*, int, ById> counter;
   for (size_t i = 0; i < frame.size(); ++i) {
     MapPoint* mp = frame.map_points[i];
     if (!mp) continue;
