@@ -67,24 +67,27 @@ std::vector<double> MotionTruth::timestamps() const {
   return stamps;
 }
 
-std::vector<uint8_t> MotionTruth::near_moving_object(double timestamp,
-                                                     const std::vector<cv::KeyPoint>& keypoints,
-                                                     int radius) const {
+MotionTruth::KeypointTruth MotionTruth::classify_keypoints(
+    double timestamp, const std::vector<cv::KeyPoint>& keypoints, int near_radius) const {
   const std::string key = stamp_key(timestamp);
   const cv::Mat labels = load_labels(key);
-  std::vector<uint8_t> out(keypoints.size(), 0);
+  KeypointTruth out{std::vector<uint8_t>(keypoints.size(), 0),
+                    std::vector<uint8_t>(keypoints.size(), 0)};
   auto moving = moving_ids_.find(key);
   if (moving == moving_ids_.end()) return out;
+  auto moving_at = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < labels.cols && y < labels.rows &&
+           moving->second.count(labels.at<uint16_t>(y, x));
+  };
   for (size_t i = 0; i < keypoints.size(); ++i) {
     const int cx = static_cast<int>(std::lround(keypoints[i].pt.x));
     const int cy = static_cast<int>(std::lround(keypoints[i].pt.y));
-    for (int dy = -radius; dy <= radius && !out[i]; ++dy)
-      for (int dx = -radius; dx <= radius && !out[i]; ++dx) {
-        if (dx * dx + dy * dy > radius * radius) continue;
-        const int x = cx + dx, y = cy + dy;
-        if (x < 0 || y < 0 || x >= labels.cols || y >= labels.rows) continue;
-        out[i] = moving->second.count(labels.at<uint16_t>(y, x)) ? 1 : 0;
-      }
+    out.on_moving[i] = moving_at(cx, cy);
+    bool near = out.on_moving[i];
+    for (int dy = -near_radius; dy <= near_radius && !near; ++dy)
+      for (int dx = -near_radius; dx <= near_radius && !near; ++dx)
+        near = dx * dx + dy * dy <= near_radius * near_radius && moving_at(cx + dx, cy + dy);
+    out.near_moving[i] = near;
   }
   return out;
 }
@@ -104,7 +107,7 @@ double MotionTruth::moving_fraction(double timestamp) const {
 
 std::vector<uint8_t> MotionTruth::on_moving_object(
     double timestamp, const std::vector<cv::KeyPoint>& keypoints) const {
-  return near_moving_object(timestamp, keypoints, 0);
+  return classify_keypoints(timestamp, keypoints, 0).on_moving;
 }
 
 void RejectionScore::add(const std::vector<uint8_t>& keep, const std::vector<uint8_t>& moving) {

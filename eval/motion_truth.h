@@ -22,12 +22,15 @@ class MotionTruth {
   std::vector<uint8_t> on_moving_object(double timestamp,
                                         const std::vector<cv::KeyPoint>& keypoints) const;
 
-  // For each keypoint: 1 when a pixel within `radius` px (a disc) belongs to
-  // an object flagged moving: the keypoint's corner test (FAST's circle has
-  // radius 3) then sees a moving object, even if its centre pixel does not.
-  std::vector<uint8_t> near_moving_object(double timestamp,
-                                          const std::vector<cv::KeyPoint>& keypoints,
-                                          int radius) const;
+  struct KeypointTruth {
+    std::vector<uint8_t> on_moving;    // its centre pixel is on a moving object
+    std::vector<uint8_t> near_moving;  // a pixel within the radius is
+  };
+  // Both labels from one read of the frame's label image. `near_radius`
+  // (px, a disc): a keypoint there has its corner test (FAST's circle has
+  // radius 3) see a moving object even if its centre pixel does not.
+  KeypointTruth classify_keypoints(double timestamp, const std::vector<cv::KeyPoint>& keypoints,
+                                   int near_radius) const;
 
   // Share of the frame's pixels on objects flagged moving (0..1): the
   // dynamic load a sweep reports alongside its knobs.

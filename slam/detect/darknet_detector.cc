@@ -79,11 +79,7 @@ cv::dnn::Net DarknetDetector::load_net() const {
 }
 
 DnnDetector::Input DarknetDetector::preprocess(const cv::Mat& bgr) const {
-  Input in;
-  in.blob = cv::dnn::blobFromImage(bgr, 1 / 255.0, input(), cv::Scalar(), true, false);
-  in.transform.source = bgr.size();
-  in.transform.target = input();
-  return in;
+  return stretched_input(bgr, /*swap_to_rgb=*/true);
 }
 
 std::vector<Detection> DarknetDetector::decode(const std::vector<cv::Mat>& outputs,

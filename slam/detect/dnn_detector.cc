@@ -41,4 +41,12 @@ cv::Size DnnDetector::configured_input(const DetectorConfig& config, cv::Size fa
   return config.input_width > 0 ? cv::Size(config.input_width, config.input_height) : fallback;
 }
 
+DnnDetector::Input DnnDetector::stretched_input(const cv::Mat& bgr, bool swap_to_rgb) const {
+  Input in;
+  in.blob = cv::dnn::blobFromImage(bgr, 1 / 255.0, input_, cv::Scalar(), swap_to_rgb, false);
+  in.transform.source = bgr.size();
+  in.transform.target = input_;
+  return in;
+}
+
 }  // namespace depot::slam

@@ -51,6 +51,10 @@ class DnnDetector : public Detector {
                                         const LetterboxTransform& transform,
                                         bool check_finite) const = 0;
 
+  // The frame stretched to the input size, scaled to [0, 1] (no letterbox),
+  // channels swapped to RGB when the model wants it.
+  Input stretched_input(const cv::Mat& bgr, bool swap_to_rgb) const;
+
   // config.input_width x input_height when given, else `fallback`.
   static cv::Size configured_input(const DetectorConfig& config, cv::Size fallback);
 

@@ -71,11 +71,7 @@ cv::dnn::Net FastestDetDetector::load_net() const {
 
 DnnDetector::Input FastestDetDetector::preprocess(const cv::Mat& bgr) const {
   // FastestDet takes BGR (its examples feed OpenCV images unswapped).
-  Input in;
-  in.blob = cv::dnn::blobFromImage(bgr, 1 / 255.0, input(), cv::Scalar(), false, false);
-  in.transform.source = bgr.size();
-  in.transform.target = input();
-  return in;
+  return stretched_input(bgr, /*swap_to_rgb=*/false);
 }
 
 std::vector<Detection> FastestDetDetector::decode(const std::vector<cv::Mat>& outputs,

@@ -169,18 +169,17 @@ RunSummary run_sequence(const RunOptions& o) {
     eval::RejectionScore frame_score;
     long fp_z = 0, fp_q = 0;
     if (truth && filter) {
-      const std::vector<uint8_t> moving = truth->on_moving_object(t, filter->last_keypoints());
+      const eval::MotionTruth::KeypointTruth labels =
+          truth->classify_keypoints(t, filter->last_keypoints(), 4);
+      const std::vector<uint8_t>& moving = labels.on_moving;
       frame_score.add(filter->last_keep(), moving);
-      // Static points thrown away that touch a moving object's outline (a
-      // FAST corner there is formed by the mover, though its centre pixel is
-      // background): how much of the false rejection is that.
-      const std::vector<uint8_t> near = truth->near_moving_object(t, filter->last_keypoints(), 4);
-      for (size_t k = 0; k < moving.size(); ++k)
-        summary.false_positive_near_moving += !filter->last_keep()[k] && !moving[k] && near[k];
-      // Where the false rejections come from: Z (boxes) or Q (flow test).
+      // Where the false rejections come from: Z (boxes) or Q (flow test);
+      // and how many touch a moving object's outline (a FAST corner there is
+      // formed by the mover, though its centre pixel is background).
       for (size_t k = 0; k < moving.size(); ++k) {
         if (filter->last_keep()[k] || moving[k]) continue;
         (filter->last_sets()[k] == slam::PointSet::kZ ? fp_z : fp_q)++;
+        summary.false_positive_near_moving += labels.near_moving[k];
       }
       summary.score.true_positive += frame_score.true_positive;
       summary.score.false_positive += frame_score.false_positive;
