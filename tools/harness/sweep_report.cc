@@ -87,6 +87,7 @@ std::string spec_html(const SweepPlan& plan, const SweepSummary& summary) {
 
 ReportFiles write_sweep_report(const SweepPlan& plan, const SweepLayout& layout,
                                const std::vector<std::string>& figure_runs) {
+  for (const auto& id : figure_runs) find_job(plan, id, "--figures");  // before writing anything
   const SweepSummary summary = summarize_sweep(plan, layout);
   const std::string dir = layout.report_dir();
   fs::create_directories(dir);
@@ -121,7 +122,6 @@ ReportFiles write_sweep_report(const SweepPlan& plan, const SweepLayout& layout,
     figures_html += "<div class=\"figure\">" + inline_svg(f.svg) + "</div>\n";
   }
   std::string trajectories_html;
-  for (const auto& id : figure_runs) find_job(plan, id, "--figures");
   for (const auto& id : figure_runs.empty() ? default_figure_runs(plan) : figure_runs) {
     const std::string svg = (fs::path(layout.run_dir(id)) / "ate.svg").string();
     if (!fs::is_regular_file(svg)) continue;

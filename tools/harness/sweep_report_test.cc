@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/error.h"
 #include "common/tum_io.h"
 #include "tools/harness/run_record.h"
 
@@ -94,6 +95,11 @@ TEST_F(SweepReportTest, ShowsTheTrajectoryFiguresAskedFor) {
   const std::string html = read(files.html);
   EXPECT_NE(html.find("traj-walk__load-1__s2__orb+yolo\""), std::string::npos);
   EXPECT_EQ(html.find("traj-walk__load-2__s1__orb\""), std::string::npos);
+}
+
+TEST_F(SweepReportTest, RefusesAnUnknownFigureRunBeforeWritingAnything) {
+  EXPECT_THROW(write_sweep_report(plan, layout, {"walk__load-9__s1__orb"}), Error);
+  EXPECT_FALSE(fs::exists(root / "report"));
 }
 
 }  // namespace
