@@ -35,33 +35,32 @@ std::vector<PointSet> assign_point_sets(const std::vector<cv::KeyPoint>& keypoin
   return sets;
 }
 
-void move_background_to_q(const std::vector<cv::KeyPoint>& keypoints,
+void split_boxes_by_depth(const std::vector<cv::KeyPoint>& keypoints,
                           const std::vector<float>& depth, const std::vector<Detection>& detections,
                           const AprioriClasses& classes, float margin,
                           std::vector<PointSet>& sets) {
+  std::vector<PointSet> out = sets;  // boxes are judged on the sets before any move
   for (const Detection& d : detections) {
-    if (classes.classify(d.class_name) != MotionClass::kDynamic) continue;
-    std::vector<size_t> members, unknown;
+    const MotionClass motion = classes.classify(d.class_name);
+    if (motion == MotionClass::kStatic) continue;
+    const bool dynamic = motion == MotionClass::kDynamic;
+    std::vector<size_t> at_depth, no_depth;
     std::vector<float> depths;
     for (size_t i = 0; i < keypoints.size(); ++i) {
-      if (sets[i] != PointSet::kZ || !inside(d.box, keypoints[i].pt)) continue;
-      if (depth[i] <= 0) {
-        unknown.push_back(i);
-        continue;
-      }
-      members.push_back(i);
-      depths.push_back(depth[i]);
+      if (sets[i] == PointSet::kP || !inside(d.box, keypoints[i].pt)) continue;
+      (depth[i] > 0 ? at_depth : no_depth).push_back(i);
+      if (depth[i] > 0) depths.push_back(depth[i]);
     }
-    if (depths.size() < 5) continue;
-    // No depth inside a box whose object has depth: out of the sensor's
-    // range (far background) or a depth edge, so not the object itself.
-    for (size_t i : unknown) sets[i] = PointSet::kQ;
-    // The object is in front of what surrounds it in its box.
+    if (depths.size() < 5) continue;  // the object itself has no depth: decide nothing
+    for (size_t i : no_depth) out[i] = PointSet::kP;
+    if (!dynamic) continue;
     std::nth_element(depths.begin(), depths.begin() + depths.size() / 4, depths.end());
     const float object_depth = depths[depths.size() / 4];
-    for (size_t i : members)
-      if (depth[i] > object_depth + margin) sets[i] = PointSet::kQ;
+    // Only Z: a point that is also in another box keeps the overlap rule.
+    for (size_t i : at_depth)
+      if (sets[i] == PointSet::kZ && depth[i] > object_depth + margin) out[i] = PointSet::kP;
   }
+  sets = std::move(out);
 }
 
 std::vector<bool> inside_dynamic_boxes(const std::vector<cv::KeyPoint>& keypoints,

@@ -20,10 +20,17 @@ std::vector<PointSet> assign_point_sets(const std::vector<cv::KeyPoint>& keypoin
                                         const std::vector<Detection>& detections,
                                         const AprioriClasses& classes);
 
-// Our extension: Z points lying more than `margin` (m) behind their box's
-// object (the 25th percentile of the box's keypoint depths), or without
-// depth (depth[i] <= 0: beyond the sensor's range or at an edge), move to Q.
-void move_background_to_q(const std::vector<cv::KeyPoint>& keypoints,
+// Our extension (off unless a margin is given): the boxes are for objects
+// the depth sensor sees, so a boxed point that is not at its object's depth
+// is background seen around or through the object, and goes to P:
+//  - a Z point more than `margin` (m) behind its dynamic box's object (the
+//    25th percentile of the box's keypoint depths: the object is in front
+//    of what surrounds it);
+//  - a Z or Q point without depth (depth[i] <= 0: beyond the sensor's range
+//    or in a depth shadow), provided its box's object has depth.
+// Measured on depot_walking_xyz: precision of rejection 0.36 -> 0.75 (Z
+// alone 0.41 -> 0.99), at a recall of 0.86 -> 0.80.
+void split_boxes_by_depth(const std::vector<cv::KeyPoint>& keypoints,
                           const std::vector<float>& depth, const std::vector<Detection>& detections,
                           const AprioriClasses& classes, float margin, std::vector<PointSet>& sets);
 

@@ -49,6 +49,46 @@ TEST(PointSets, FollowTheOverlapRule) {
   EXPECT_EQ(inside, (std::vector<bool>{true, true, false, false, false}));
 }
 
+TEST(PointSets, DepthSplitSendsBackgroundToP) {
+  const std::vector<Detection> dets = {det("person", 100, 100, 100, 200),
+                                       det("chair", 400, 300, 80, 80)};
+  std::vector<cv::KeyPoint> kps;
+  std::vector<float> depth;
+  for (int k = 0; k < 6; ++k) {  // the person, 2 m away
+    kps.push_back(kp(120 + 10 * k, 150));
+    depth.push_back(2.0f + 0.05f * k);
+  }
+  kps.push_back(kp(120, 280));  // the wall 1.5 m behind the person -> P
+  depth.push_back(3.5f);
+  kps.push_back(kp(130, 280));  // within the margin (an arm) -> Z
+  depth.push_back(2.3f);
+  kps.push_back(kp(140, 280));  // no depth in the person's box -> P
+  depth.push_back(0.0f);
+  for (int k = 0; k < 5; ++k) {  // the chair
+    kps.push_back(kp(410 + 10 * k, 320));
+    depth.push_back(1.5f);
+  }
+  kps.push_back(kp(410, 370));  // no depth in the chair's box -> P
+  depth.push_back(0.0f);
+  kps.push_back(kp(420, 370));  // behind the chair: still Q (only Z is split by depth)
+  depth.push_back(4.0f);
+  auto sets = assign_point_sets(kps, dets, table());
+  split_boxes_by_depth(kps, depth, dets, table(), 0.4f, sets);
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(sets[k], PointSet::kZ) << k;
+  EXPECT_EQ(sets[6], PointSet::kP);
+  EXPECT_EQ(sets[7], PointSet::kZ);
+  EXPECT_EQ(sets[8], PointSet::kP);
+  for (int k = 9; k < 14; ++k) EXPECT_EQ(sets[k], PointSet::kQ) << k;
+  EXPECT_EQ(sets[14], PointSet::kP);
+  EXPECT_EQ(sets[15], PointSet::kQ);
+
+  // A box whose object has (almost) no depth decides nothing.
+  std::vector<float> none(kps.size(), 0.0f);
+  auto unchanged = assign_point_sets(kps, dets, table());
+  split_boxes_by_depth(kps, none, dets, table(), 0.4f, unchanged);
+  EXPECT_EQ(unchanged, assign_point_sets(kps, dets, table()));
+}
+
 TEST(BoxConversion, PaperEquation8) {
   // X, Y, W, H normalised centre format on a 640 x 480 image.
   cv::Rect2f b = yolo_to_pixels(0.5f, 0.25f, 0.2f, 0.1f, 640, 480);

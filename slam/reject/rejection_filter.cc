@@ -142,7 +142,7 @@ void RejectionFilter::filter_full(const FrameImages& images,
   std::vector<float> depth;
   if (params_.background_depth_margin > 0 || ego) depth = depth_at(images.depth, keypoints);
   if (params_.background_depth_margin > 0)
-    move_background_to_q(keypoints, depth, detections_, classes_, params_.background_depth_margin,
+    split_boxes_by_depth(keypoints, depth, detections_, classes_, params_.background_depth_margin,
                          sets);
   std::vector<size_t> q_index, p_index;
   for (size_t i = 0; i < sets.size(); ++i) {

@@ -30,10 +30,9 @@ struct RejectionParams {
   FlowParams flow;
   FlowTestParams test;
   int max_reference_points = 100;  // P points sampled for the mean flow
-  // Our extension, off by default (0 = the paper exactly): in `full`, a
-  // point of a dynamic box that lies more than this far (m) behind the
-  // object (the box's near depth) is background seen around the object; it
-  // goes to Q and the flow test decides, like the paper's overlap rule.
+  // Our extension, off by default (0 = the paper exactly): in `full`, boxed
+  // points that are not at their object's depth go to P, the object's
+  // background being this far (m) behind it (split_boxes_by_depth).
   float background_depth_margin = 0.0f;
   // Our extension, off by default: test flow against the camera's own
   // motion fitted to P (ego_motion_flow.h) instead of P's mean flow, for

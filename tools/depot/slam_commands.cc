@@ -84,9 +84,8 @@ void add_rejection_options(CLI::App* cmd, RunOptions& o) {
   cmd->add_option("--settings", o.settings,
                   "Settings YAML (default: the dataset's calibration.yaml)");
   cmd->add_option("--background-margin", o.background_depth_margin,
-                  "Our extension of full: points this far (m) behind a dynamic box's object go to "
-                  "the flow test "
-                  "(0 = the paper exactly)")
+                  "Our extension of full: boxed points without depth, or this far (m) behind a "
+                  "dynamic box's object, are background and go to P (0 = the paper exactly)")
       ->check(CLI::Range(0.0, 10.0));
   cmd->add_flag("--ego-flow", o.ego_motion_flow,
                 "Our extension of full: test flow against the camera's motion fitted to P (by "
