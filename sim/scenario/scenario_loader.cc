@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <set>
 
+#include "common/config_path.h"
 #include "common/error.h"
 #include "common/yaml_file.h"
 
@@ -118,17 +119,20 @@ class Fields {
     }
     return out;
   }
-  // A path relative to the scenario's folder, which must exist.
+  // A path relative to the scenario's folder (or to the shared data,
+  // common/config_path.h), which must exist.
   std::string existing_file(const char* key) const {
     YAML::Node n = node_[key];
     if (!n) return "";
-    fs::path p = n.as<std::string>();
-    if (p.is_relative()) p = fs::path(file_).parent_path() / p;
+    const std::string value = n.as<std::string>();
+    const std::string p = resolve_config_path(value, fs::path(file_).parent_path().string());
     std::error_code ec;
     if (!fs::is_regular_file(p, ec))
-      fail(where(n),
-           "file '" + n.as<std::string>() + "' not found (" + p.lexically_normal().string() + ")");
-    return p.lexically_normal().string();
+      fail(where(n), "file '" + value + "' not found (" + p + ")" +
+                         (names_shared_data(value) ? "; set " + std::string(kSharedDataVariable) +
+                                                         " to the shared data folder"
+                                                   : ""));
+    return p;
   }
 
  private:

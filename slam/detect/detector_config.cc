@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/config_path.h"
 #include "common/error.h"
 #include "common/yaml_file.h"
 
@@ -19,11 +20,6 @@ std::string folder_of(const std::string& path) {
   const auto slash = path.find_last_of('/');
   if (slash == std::string::npos) return ".";
   return slash == 0 ? "/" : path.substr(0, slash);
-}
-
-std::string resolve(const std::string& folder, const std::string& p) {
-  if (p.empty() || p.front() == '/') return p;
-  return folder == "/" ? "/" + p : folder + "/" + p;
 }
 
 std::string read_string(const YAML::Node& root, const char* key, const std::string& path) {
@@ -80,9 +76,9 @@ DetectorConfig load_detector_config(const std::string& yaml_path) {
          "unknown detector type '" + c.type + "' (expected yolov5, darknet or fastestdet)");
 
   const std::string folder = folder_of(yaml_path);
-  c.model = resolve(folder, read_string(root, "model", yaml_path));
-  c.config = resolve(folder, read_string(root, "config", yaml_path));
-  c.names = resolve(folder, read_string(root, "names", yaml_path));
+  c.model = resolve_config_path(read_string(root, "model", yaml_path), folder);
+  c.config = resolve_config_path(read_string(root, "config", yaml_path), folder);
+  c.names = resolve_config_path(read_string(root, "names", yaml_path), folder);
   if (c.model.empty()) fail(yaml_path, "missing 'model' (path of the model file)");
   if (c.names.empty()) fail(yaml_path, "missing 'names' (path of the class names file)");
   if (c.type == "darknet" && c.config.empty())

@@ -28,17 +28,17 @@ TEST(DetectorConfig, ShippedYoloFastest) {
   const std::string dir = test::source_dir() + "/scenes/detectors";
   const DetectorConfig c = load_detector_config(dir + "/yolo_fastest.yaml");
   EXPECT_EQ(c.type, "darknet");
-  EXPECT_EQ(c.model,
-            dir + "/../../../shared/data/models/yolo-fastest-1.1/yolo-fastest-1.1.weights");
-  EXPECT_EQ(c.config, dir + "/../../../shared/data/models/yolo-fastest-1.1/yolo-fastest-1.1.cfg");
-  EXPECT_EQ(c.names, dir + "/../../../shared/data/models/yolo-fastest-1.1/coco.names");
+  // ${DEPOT_SHARED_DATA} in the file is the shared data folder.
+  EXPECT_EQ(c.model, test::yolo_fastest_dir() + "/yolo-fastest-1.1.weights");
+  EXPECT_EQ(c.config, test::yolo_fastest_dir() + "/yolo-fastest-1.1.cfg");
+  EXPECT_EQ(c.names, test::yolo_fastest_dir() + "/coco.names");
   EXPECT_EQ(c.input_width, 320);
   EXPECT_EQ(c.input_height, 320);
   EXPECT_FLOAT_EQ(c.confidence, 0.3f);
   EXPECT_FLOAT_EQ(c.nms, 0.45f);
   EXPECT_TRUE(c.classes.empty());
   if (test::have_shared_data()) {
-    // The relative paths reach the same files as the test's data path.
+    // Those paths reach the real files.
     EXPECT_EQ(canonical(c.model),
               canonical(test::yolo_fastest_dir() + "/yolo-fastest-1.1.weights"));
     EXPECT_TRUE(std::filesystem::exists(c.config));
@@ -50,7 +50,7 @@ TEST(DetectorConfig, ShippedFastestDet) {
   const std::string dir = test::source_dir() + "/scenes/detectors";
   const DetectorConfig c = load_detector_config(dir + "/fastestdet.yaml");
   EXPECT_EQ(c.type, "fastestdet");
-  EXPECT_EQ(c.model, dir + "/../../../shared/data/models/fastestdet/FastestDet.onnx");
+  EXPECT_EQ(c.model, test::fastestdet_dir() + "/FastestDet.onnx");
   EXPECT_EQ(c.input_width, 352);
   EXPECT_EQ(c.input_height, 352);
   EXPECT_TRUE(c.config.empty());
