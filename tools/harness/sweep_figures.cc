@@ -132,7 +132,8 @@ std::vector<std::string> default_figure_runs(const SweepPlan& plan) {
   const size_t last = plan.cells.size() - 1;
   for (const auto& mode : modes)
     for (const auto& job : plan.jobs)
-      if (job.kind == JobKind::kSlam && job.cell == last && job.seed == 1 && job.mode == mode)
+      if (job.kind == JobKind::kSlam && job.seed == 1 && job.mode == mode &&
+          std::find(job.cells.begin(), job.cells.end(), last) != job.cells.end())
         ids.push_back(job.id);
   return ids;
 }

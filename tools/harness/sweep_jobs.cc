@@ -28,12 +28,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::map<std::string, std::string> cell_parameters(const SweepPlan& plan, const SweepCell& cell) {
-  std::map<std::string, std::string> out;
-  for (size_t k = 0; k < plan.spec.vary.size(); ++k) out[plan.spec.vary[k].name] = cell.levels[k];
-  return out;
-}
-
 void add_accuracy(const std::vector<StampedPose>& truth, const cli::RunSummary& s,
                   const std::string& plot_path, RunRecord& r) {
   const eval::MatchedTrajectories matched =
@@ -126,7 +120,9 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
   RunRecord r;
   r.id = job.id;
   r.scenario = plan.spec.scenarios.at(cell.scenario).name;
-  r.parameters = cell_parameters(plan, cell);
+  for (size_t k = 0; k < plan.spec.vary.size(); ++k)  // the levels this run depends on
+    if (parameter_affects_mode(resolve_parameter(plan.spec.vary[k].name).target, job.mode))
+      r.parameters[plan.spec.vary[k].name] = cell.levels[k];
   r.seed = job.seed;
   r.mode = job.mode;
   r.moving_share = read_dataset_record(layout.dataset_record(job.dataset_id)).moving_share_mean;

@@ -7,6 +7,7 @@
 
 #include "common/error.h"
 #include "common/tum_io.h"
+#include "slam/reject/rejection_filter.h"
 
 namespace fs = std::filesystem;
 
@@ -18,6 +19,18 @@ std::string file_safe(const std::string& text) {
         c != '_')
       c = '_';
   return out;
+}
+
+bool parameter_affects_mode(ParameterTarget target, const std::string& mode) {
+  switch (target) {
+    case ParameterTarget::kScenario:
+      return true;
+    case ParameterTarget::kDetector:
+      return slam::mode_uses_detector(slam::parse_rejection_mode(mode));
+    case ParameterTarget::kRejection:
+      return slam::parse_rejection_mode(mode) == slam::RejectionMode::kFull;
+  }
+  return true;
 }
 
 SweepPlan make_sweep_plan(const SweepSpec& spec) {
@@ -69,19 +82,34 @@ SweepPlan make_sweep_plan(const SweepSpec& spec) {
       job.cell = c;
       job.seed = seed;
       job.id = job.dataset_id = dataset_id;
+      job.cells = {c};
       render_of[dataset_id] = plan.jobs.size();
       plan.jobs.push_back(job);
     }
+  std::map<std::string, size_t> run_of;  // run id -> index in plan.jobs
   for (size_t c = 0; c < plan.cells.size(); ++c)
     for (int seed = 1; seed <= spec.seeds; ++seed)
       for (const auto& mode : spec.modes) {
+        // The run's id names only the levels that matter to its mode.
+        std::string run_key = file_safe(spec.scenarios[plan.cells[c].scenario].name);
+        for (size_t k = 0; k < spec.vary.size(); ++k)
+          if (parameter_affects_mode(resolve_parameter(spec.vary[k].name).target, mode))
+            run_key +=
+                "__" + file_safe(spec.vary[k].name) + "-" + file_safe(plan.cells[c].levels[k]);
+        const std::string id = run_key + "__s" + std::to_string(seed) + "__" + file_safe(mode);
+        if (auto it = run_of.find(id); it != run_of.end()) {
+          plan.jobs[it->second].cells.push_back(c);
+          continue;
+        }
         SweepJob job;
         job.kind = JobKind::kSlam;
         job.cell = c;
+        job.cells = {c};
         job.seed = seed;
         job.mode = mode;
         job.dataset_id = dataset_keys[c] + "__s" + std::to_string(seed);
-        job.id = plan.cells[c].id + "__s" + std::to_string(seed) + "__" + file_safe(mode);
+        job.id = id;
+        run_of[id] = plan.jobs.size();
         plan.jobs.push_back(job);
       }
   return plan;

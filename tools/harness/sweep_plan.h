@@ -29,6 +29,10 @@ struct SweepJob {
   std::string mode;        // slam jobs only
   std::string dataset_id;  // the dataset a slam job reads (its own id for render)
   // render: a cell with this dataset's scenario settings; slam: its cell
+  // slam: every cell this run stands for. A mode that ignores a varied
+  // parameter (orb ignores the detector's and the rejection's) runs once for
+  // all of that parameter's levels, and its result counts in each cell.
+  std::vector<size_t> cells;
 };
 
 struct SweepPlan {
@@ -43,6 +47,11 @@ struct SweepPlan {
 std::string file_safe(const std::string& text);
 
 SweepPlan make_sweep_plan(const SweepSpec& spec);
+
+// Whether a parameter of this target can change a run in this mode: the
+// scenario's always; the detector's only where a detector runs (orb+yolo,
+// full); the rejection extensions' only in full.
+bool parameter_affects_mode(ParameterTarget target, const std::string& mode);
 
 // Throws Error("<sweep>: no job '<id>'").
 const SweepJob& find_job(const SweepPlan& plan, const std::string& id, const std::string& sweep);

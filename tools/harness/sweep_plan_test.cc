@@ -30,7 +30,8 @@ TEST(SweepPlan, ExpandsTheGridIntoCellsAndJobsWithUniqueIds) {
   EXPECT_EQ(plan.cells[1].id, "depot_walking_xyz__load-0__miss_rate-0.3");
   EXPECT_EQ(plan.cells[1].label, "depot_walking_xyz load=0 miss_rate=0.3");
   // Renders per load level and seed only: miss_rate acts on the detector.
-  ASSERT_EQ(plan.jobs.size(), 3u * 2 + 6u * 2 * 2);
+  // orb runs no detector, so it runs once per load level and seed too.
+  ASSERT_EQ(plan.jobs.size(), 3u * 2 + 3u * 2 + 6u * 2);
   std::set<std::string> ids;
   for (const auto& job : plan.jobs) EXPECT_TRUE(ids.insert(job.id).second) << job.id;
   const SweepJob& run =
@@ -39,8 +40,22 @@ TEST(SweepPlan, ExpandsTheGridIntoCellsAndJobsWithUniqueIds) {
   EXPECT_EQ(run.dataset_id, "depot_walking_xyz__load-2__s2");
   EXPECT_EQ(find_job(plan, run.dataset_id, "sweep").kind, JobKind::kRender);
   EXPECT_EQ(run.seed, 2);
+  EXPECT_EQ(run.cells, (std::vector<size_t>{4}));
+  const SweepJob& orb = find_job(plan, "depot_walking_xyz__load-2__s2__orb", "sweep");
+  EXPECT_EQ(orb.dataset_id, "depot_walking_xyz__load-2__s2");
+  EXPECT_EQ(orb.cells, (std::vector<size_t>{4, 5}));  // both miss rates at load 2
   EXPECT_NE(error_of([&] { find_job(plan, "nope", "sweep"); }).find("no job 'nope'"),
             std::string::npos);
+}
+
+TEST(SweepPlan, ParametersMatterOnlyToTheModesTheyReach) {
+  EXPECT_TRUE(parameter_affects_mode(ParameterTarget::kScenario, "orb"));
+  EXPECT_FALSE(parameter_affects_mode(ParameterTarget::kDetector, "orb"));
+  EXPECT_FALSE(parameter_affects_mode(ParameterTarget::kDetector, "orb+lk"));
+  EXPECT_TRUE(parameter_affects_mode(ParameterTarget::kDetector, "orb+yolo"));
+  EXPECT_TRUE(parameter_affects_mode(ParameterTarget::kDetector, "full"));
+  EXPECT_FALSE(parameter_affects_mode(ParameterTarget::kRejection, "orb+yolo"));
+  EXPECT_TRUE(parameter_affects_mode(ParameterTarget::kRejection, "full"));
 }
 
 TEST(SweepPlan, RefusesLevelsThatWouldShareAFolder) {

@@ -57,7 +57,7 @@ SweepSummary summarize_records(const SweepPlan& plan, const std::vector<RunRecor
   for (const auto& r : records) {
     auto it = jobs.find(r.id);
     if (it == jobs.end()) continue;  // not part of this plan
-    groups[{it->second->cell, r.mode}].push_back(&r);
+    for (size_t cell : it->second->cells) groups[{cell, r.mode}].push_back(&r);
     summary.runs.push_back(r);
   }
   for (size_t c = 0; c < plan.cells.size(); ++c)

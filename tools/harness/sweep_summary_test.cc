@@ -69,6 +69,26 @@ TEST(SweepSummary, GroupsRecordsByCellAndMode) {
   EXPECT_EQ(s.find(0, "orb+lk"), nullptr);
 }
 
+TEST(SweepSummary, ASharedRunCountsInEveryCellItStandsFor) {
+  SweepSpec spec;
+  spec.scenarios = {{"walk", "/x/walk.yaml"}};
+  spec.vary = {{"rejection.background_margin", {"0", "0.4"}}};
+  spec.modes = {"orb", "full"};
+  spec.seeds = 1;
+  const SweepPlan plan = make_sweep_plan(spec);
+  const SweepSummary s = summarize_records(
+      plan, {record("walk__s1__orb", "orb", 1, 0.6, NAN),
+             record("walk__rejection.background_margin-0__s1__full", "full", 1, 0.01, 0.4),
+             record("walk__rejection.background_margin-0.4__s1__full", "full", 1, 0.02, 0.7)});
+  EXPECT_EQ(s.expected_runs, 3u);  // one orb run for both margins
+  EXPECT_EQ(s.runs.size(), 3u);
+  EXPECT_DOUBLE_EQ(s.find(0, "orb")->ate_rmse.mean, 0.6);
+  EXPECT_DOUBLE_EQ(s.find(1, "orb")->ate_rmse.mean, 0.6);
+  EXPECT_DOUBLE_EQ(s.find(1, "full")->precision.mean, 0.7);
+  EXPECT_NEAR(paired_improvement(*s.find(1, "orb"), *s.find(1, "full"), &RunRecord::ate_rmse),
+              100.0 * (0.6 - 0.02) / 0.6, 1e-9);
+}
+
 TEST(SweepSummary, Eq9ComparesOnlySeedsBothModesFinished) {
   SweepSpec spec;
   spec.scenarios = {{"walk", "/x/walk.yaml"}};
