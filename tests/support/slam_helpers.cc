@@ -10,7 +10,8 @@
 
 namespace depot::test {
 
-SlamOutcome run_slam_mode(const std::string& dataset, slam::RejectionMode mode, bool threaded) {
+SlamOutcome run_slam_mode(const std::string& dataset, slam::RejectionMode mode, bool threaded,
+                          const slam::RejectionParams& params) {
   slam::TumSequence sequence(dataset);
   slam::SlamSettings settings = slam::load_settings(sequence.calibration_path());
   settings.threaded_mapping = threaded;
@@ -19,7 +20,7 @@ SlamOutcome run_slam_mode(const std::string& dataset, slam::RejectionMode mode, 
   slam::AprioriClasses classes =
       slam::AprioriClasses::load(std::string(DEPOT_SOURCE_DIR) + "/scenes/apriori/depot.yaml");
   classes.check_against(detector.class_names(), "depot.yaml", "sim");
-  slam::RejectionFilter filter(mode, classes, &detector);
+  slam::RejectionFilter filter(mode, classes, &detector, params);
   slam::System system(settings, mode == slam::RejectionMode::kOrb ? nullptr : &filter);
   eval::MotionTruth truth(dataset);
   SlamOutcome r;

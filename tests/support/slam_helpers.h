@@ -17,6 +17,7 @@ struct SlamOutcome {
 
 // The simulated detector at its default error level and the depot class
 // table; `threaded` picks the mapping thread (false = reproducible).
-SlamOutcome run_slam_mode(const std::string& dataset, slam::RejectionMode mode, bool threaded);
+SlamOutcome run_slam_mode(const std::string& dataset, slam::RejectionMode mode, bool threaded,
+                          const slam::RejectionParams& params = {});
 
 }  // namespace depot::test
