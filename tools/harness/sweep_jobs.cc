@@ -28,40 +28,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-void add_accuracy(const std::vector<StampedPose>& truth, const cli::RunSummary& s,
-                  const std::string& plot_path, RunRecord& r) {
-  // A run that keeps too few poses to align (it lost the camera and began a
-  // new map near the end) is an outcome of the sweep, not a failed job.
-  if (s.trajectory.size() < 3) {
-    r.ok = false;
-    r.error = "only " + std::to_string(s.trajectory.size()) +
-              " poses in the final trajectory: too few to evaluate";
-    return;
-  }
-  const eval::MatchedTrajectories matched =
-      eval::match_trajectories(truth, s.trajectory, {}, "groundtruth", r.mode);
-  const eval::AteResult ate = eval::compute_ate(matched);
-  r.ate_rmse = ate.statistics.rmse;
-  r.ate_mean = ate.statistics.mean;
-  r.ate_median = ate.statistics.median;
-  r.ate_std = ate.statistics.std;
-  r.ate_max = ate.statistics.max;
-  eval::TrajectoryPlot plot = eval::ate_plot(matched, ate);
-  plot.title = r.id;
-  eval::write_trajectory_plot_svg(plot_path, plot);
-  try {
-    eval::PairSelection pairs;
-    pairs.delta = r.rpe_delta_s;
-    const eval::RpeResult rpe = eval::compute_rpe(matched, pairs);
-    r.rpe_trans_rmse = rpe.translation_statistics.rmse;
-    r.rpe_trans_std = rpe.translation_statistics.std;
-    r.rpe_rot_rmse = rpe.rotation_statistics.rmse;
-    r.rpe_rot_std = rpe.rotation_statistics.std;
-  } catch (const Error&) {
-    // Too short for the delta: RPE stays undefined (NaN), ATE still counts.
-  }
-}
-
 }  // namespace
 
 void check_sweep_inputs(const SweepPlan& plan) {
@@ -113,6 +79,40 @@ DatasetRecord run_render_job(const SweepPlan& plan, const SweepLayout& layout,
   return record;
 }
 
+void add_accuracy(const std::vector<StampedPose>& truth, const std::vector<StampedPose>& trajectory,
+                  const std::string& plot_path, RunRecord& r) {
+  // A run that keeps too few poses to align (it lost the camera and began a
+  // new map near the end) is an outcome of the sweep, not a failed job.
+  if (trajectory.size() < 3) {
+    r.ok = false;
+    r.error = "only " + std::to_string(trajectory.size()) +
+              " poses in the final trajectory: too few to evaluate";
+    return;
+  }
+  const eval::MatchedTrajectories matched =
+      eval::match_trajectories(truth, trajectory, {}, "groundtruth", r.mode);
+  const eval::AteResult ate = eval::compute_ate(matched);
+  r.ate_rmse = ate.statistics.rmse;
+  r.ate_mean = ate.statistics.mean;
+  r.ate_median = ate.statistics.median;
+  r.ate_std = ate.statistics.std;
+  r.ate_max = ate.statistics.max;
+  eval::TrajectoryPlot plot = eval::ate_plot(matched, ate);
+  plot.title = r.id;
+  eval::write_trajectory_plot_svg(plot_path, plot);
+  try {
+    eval::PairSelection pairs;
+    pairs.delta = r.rpe_delta_s;
+    const eval::RpeResult rpe = eval::compute_rpe(matched, pairs);
+    r.rpe_trans_rmse = rpe.translation_statistics.rmse;
+    r.rpe_trans_std = rpe.translation_statistics.std;
+    r.rpe_rot_rmse = rpe.rotation_statistics.rmse;
+    r.rpe_rot_std = rpe.rotation_statistics.std;
+  } catch (const Error&) {
+    // Too short for the delta: RPE stays undefined (NaN), ATE still counts.
+  }
+}
+
 RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const SweepJob& job) {
   const auto start = std::chrono::steady_clock::now();
   const SweepCell& cell = plan.cells.at(job.cell);
@@ -161,8 +161,8 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
     }
     write_tum_trajectory((fs::path(out.path()) / "trajectory.txt").string(), s.trajectory,
                          "depot sweep run " + job.id);
-    add_accuracy(read_tum_trajectory((fs::path(dataset) / "groundtruth.txt").string()), s,
-                 (fs::path(out.path()) / "ate.svg").string(), r);
+    add_accuracy(read_tum_trajectory((fs::path(dataset) / "groundtruth.txt").string()),
+                 s.trajectory, (fs::path(out.path()) / "ate.svg").string(), r);
   } catch (const Error& e) {
     throw_if_interrupted(job.id);
     // A run that never initialises is an outcome of the sweep, not a crash.

@@ -5,6 +5,10 @@
 //           data/<id>/, then data/<id>.json with the measured moving share;
 //   slam:   one mode on that dataset to runs/<id>/ (trajectory.txt,
 //           stats.csv, ate.svg, result.json), staged so it appears whole.
+#include <string>
+#include <vector>
+
+#include "common/tum_io.h"
 #include "tools/harness/run_record.h"
 #include "tools/harness/sweep_plan.h"
 
@@ -15,6 +19,13 @@ namespace depot::harness {
 void check_sweep_inputs(const SweepPlan& plan);
 
 DatasetRecord run_render_job(const SweepPlan& plan, const SweepLayout& layout, const SweepJob& job);
+
+// ATE and RPE (1 s) of a run's trajectory against the ground truth into
+// `r`, and the ATE plot to `plot_path`. A trajectory too short to align
+// (under 3 poses) sets r.ok = false with the reason: the run lost the
+// camera, which is an outcome of the sweep, not a failed job.
+void add_accuracy(const std::vector<StampedPose>& truth, const std::vector<StampedPose>& trajectory,
+                  const std::string& plot_path, RunRecord& r);
 
 // A run whose tracking never starts is recorded with ok = false and its
 // reason; other errors (missing dataset, interruption) throw.
