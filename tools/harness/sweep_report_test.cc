@@ -65,9 +65,10 @@ TEST_F(SweepReportTest, WritesTablesCsvPlotsAndOneSelfContainedPage) {
   EXPECT_EQ(files.runs_found, 15u);
   EXPECT_EQ(files.runs_expected, 18u);
   const std::string md = read(files.markdown);
-  // load 2: orb 0.81, full (0.011 + 0.012) / 2 = 0.0115 -> Eq. 9 = 98.6 %.
+  // load 2: orb 0.81, full (0.011 + 0.012) / 2 = 0.0115 -> Eq. 9 = 98.6 %;
+  // paired differences -799 and -798 mm, t = -798.5 / (0.5 sqrt(2) / sqrt(2)).
   EXPECT_NE(md.find("| walk | 2 | – | 0.8100 ± 0.0000 | 0.0115 ± 0.0005 | 0.0115 ± 0.0005 | 98.6 % "
-                    "| 6 of 6 |"),
+                    "| -798.50 ± 0.50 | -1597.0 | 6 of 6 |"),
             std::string::npos)
       << md;
   EXPECT_NE(md.find("| walk | 0 |"), std::string::npos);

@@ -39,6 +39,25 @@ double paired_improvement(const CellModeSummary& baseline, const CellModeSummary
   return eval::improvement_percent(sum_base / n, sum_ours / n);
 }
 
+PairedDifference paired_difference(const CellModeSummary& baseline, const CellModeSummary& ours,
+                                   double RunRecord::*figure) {
+  std::vector<double> diffs;
+  for (const auto& [seed, run] : ours.runs_by_seed) {
+    auto it = baseline.runs_by_seed.find(seed);
+    if (it == baseline.runs_by_seed.end()) continue;
+    const double b = it->second.*figure, o = run.*figure;
+    if (std::isfinite(b) && std::isfinite(o)) diffs.push_back(o - b);
+  }
+  PairedDifference out;
+  out.difference = mean_std(diffs);
+  const double n = static_cast<double>(diffs.size());
+  if (diffs.size() >= 2 && out.difference.std > 0) {
+    const double sample_std = out.difference.std * std::sqrt(n / (n - 1));
+    out.t = out.difference.mean / (sample_std / std::sqrt(n));
+  }
+  return out;
+}
+
 const CellModeSummary* SweepSummary::find(size_t cell, const std::string& mode) const {
   for (const auto& e : entries)
     if (e.cell == cell && e.mode == mode) return &e;

@@ -34,6 +34,18 @@ struct CellModeSummary {
   std::map<int, RunRecord> runs_by_seed;
 };
 
+// The per-seed difference ours - baseline on one figure, over the seeds
+// where both are finite: its mean ± std (population, like every spread in
+// the tables) and the paired t statistic mean / (s / sqrt(n)) with the
+// sample std s. |t| under about 2 means the seeds show no difference; NaN
+// with fewer than two pairs or no spread.
+struct PairedDifference {
+  MeanStd difference;
+  double t = NAN;
+};
+PairedDifference paired_difference(const CellModeSummary& baseline, const CellModeSummary& ours,
+                                   double RunRecord::*figure);
+
 // Eq. 9 of `ours` against `baseline` on one figure, from its means over the
 // seeds where both have a finite value (a failed run of one mode must not
 // compare different seeds). NaN when no seed pairs up.

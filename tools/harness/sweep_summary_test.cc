@@ -106,6 +106,16 @@ TEST(SweepSummary, Eq9ComparesOnlySeedsBothModesFinished) {
               100.0 * (0.65 - 0.02) / 0.65, 1e-9);
   EXPECT_TRUE(
       std::isnan(paired_improvement(*s.find(0, "orb"), *s.find(0, "full"), &RunRecord::precision)));
+  // Differences full - orb on seeds 1 and 3: -0.99 and -0.27.
+  const PairedDifference d =
+      paired_difference(*s.find(0, "orb"), *s.find(0, "full"), &RunRecord::ate_rmse);
+  EXPECT_EQ(d.difference.count, 2);
+  EXPECT_NEAR(d.difference.mean, -0.63, 1e-12);
+  EXPECT_NEAR(d.difference.std, 0.36, 1e-12);
+  // Sample std 0.36 sqrt(2), so t = -0.63 / (0.36 sqrt(2) / sqrt(2)) = -1.75.
+  EXPECT_NEAR(d.t, -1.75, 1e-9);
+  EXPECT_TRUE(std::isnan(
+      paired_difference(*s.find(0, "orb"), *s.find(0, "full"), &RunRecord::precision).t));
 }
 
 }  // namespace

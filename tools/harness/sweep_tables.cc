@@ -79,22 +79,33 @@ Table ablation_table(const SweepPlan& plan, const SweepSummary& s) {
       std::to_string(plan.spec.width) +
       " px. Moving px = share of pixels on moving objects (measured). ATE covers the frames "
       "in each trajectory: a run that loses tracking for good has a short one (see the "
-      "tracked column of the rejection table).";
+      "tracked column of the rejection table). The paired difference is the compared mode's "
+      "ATE minus orb's on the same seed (mm, mean ± std; negative = better than orb), and t "
+      "its paired t statistic: |t| under about 2 means the seeds show no difference.";
   add_cell_columns(plan, t);
   t.columns.push_back({"moving px", 1, false, " %"});
   for (const auto& mode : plan.spec.modes) t.columns.push_back({mode, 4, true});
   const std::string cmp = compared_mode(plan.spec);
   const bool eq9 = has_mode(plan.spec, "orb") && !cmp.empty();
-  if (eq9) t.columns.push_back({cmp + " vs orb (Eq. 9)", 1, false, " %"});
+  if (eq9) {
+    t.columns.push_back({cmp + " vs orb (Eq. 9)", 1, false, " %"});
+    t.columns.push_back({cmp + " - orb, paired (mm)", 2, true});
+    t.columns.push_back({"t", 1});
+  }
   t.columns.push_back({"runs"});
   for (size_t c = 0; c < plan.cells.size(); ++c) {
     auto row = cell_values(plan, c);
     const MeanStd moving = moving_share(plan, s, c);
     row.push_back(number(100 * moving.mean));
     for (const auto& mode : plan.spec.modes) row.push_back(number(s.find(c, mode)->ate_rmse));
-    if (eq9)
+    if (eq9) {
+      const CellModeSummary &orb = *s.find(c, "orb"), &ours = *s.find(c, cmp);
+      row.push_back(number(paired_improvement(orb, ours, &RunRecord::ate_rmse)));
+      const PairedDifference d = paired_difference(orb, ours, &RunRecord::ate_rmse);
       row.push_back(
-          number(paired_improvement(*s.find(c, "orb"), *s.find(c, cmp), &RunRecord::ate_rmse)));
+          number(1000 * d.difference.mean, d.difference.count > 1 ? 1000 * d.difference.std : NAN));
+      row.push_back(number(d.t));
+    }
     row.push_back(text(runs_text(plan, s, c)));
     t.rows.push_back(row);
   }
