@@ -21,7 +21,7 @@
 #include "slam/io/tum_sequence.h"
 #include "slam/reject/rejection_filter.h"
 #include "slam/system/system.h"
-#include "tools/depot/slam_runner.h"
+#include "tools/runner/slam_runner.h"
 
 namespace fs = std::filesystem;
 
@@ -86,11 +86,11 @@ int main(int argc, char** argv) {
     };
     auto measure = [&](const std::string& run_mode) {
       Measured m;
-      depot::cli::RunOptions options;
+      depot::runner::RunOptions options;
       options.dataset = dataset;
       options.mode = run_mode;
       options.detector = detector_type;
-      depot::cli::RejectionSetup rejection = depot::cli::make_rejection(options);
+      depot::runner::RejectionSetup rejection = depot::runner::make_rejection(options);
       depot::slam::RejectionFilter* filter = rejection.filter.get();
       depot::slam::System system(settings, filter);
       m.rss_start = rss_mb();

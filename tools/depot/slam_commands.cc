@@ -8,7 +8,7 @@
 #include "common/error.h"
 #include "common/tum_io.h"
 #include "tools/depot/commands.h"
-#include "tools/depot/slam_runner.h"
+#include "tools/runner/slam_runner.h"
 
 namespace fs = std::filesystem;
 
@@ -23,7 +23,7 @@ void check_output_folder(const std::string& path) {
 }
 
 struct RunArgs {
-  RunOptions options;
+  runner::RunOptions options;
   std::string output;
   std::string keyframes;
   size_t frames = 0;
@@ -35,7 +35,7 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
   if (!a.options.quiet)
     std::fprintf(stderr, "depot slam run: %s, mode %s\n", a.options.dataset.c_str(),
                  a.options.mode.c_str());
-  RunSummary s = run_sequence(a.options);
+  runner::RunSummary s = runner::run_sequence(a.options);
   write_tum_trajectory(a.output, s.trajectory,
                        "depot-slam trajectory (" + a.options.mode + ") of " + a.options.dataset);
   if (!a.keyframes.empty())
@@ -62,7 +62,7 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
 
 }  // namespace
 
-void add_rejection_options(CLI::App* cmd, RunOptions& o) {
+void add_rejection_options(CLI::App* cmd, runner::RunOptions& o) {
   cmd->add_option("--mode", o.mode, "Rejection mode (the paper's ablation)")
       ->check(CLI::IsMember({"orb", "orb+yolo", "orb+lk", "full"}));
   cmd->add_option(

@@ -17,7 +17,7 @@
 #include "sim/pipeline/render_dataset.h"
 #include "sim/scenario/scenario_loader.h"
 #include "slam/detect/sim_detector_config.h"
-#include "tools/depot/slam_runner.h"
+#include "tools/runner/slam_runner.h"
 
 namespace fs = std::filesystem;
 
@@ -37,9 +37,9 @@ void check_sweep_inputs(const SweepPlan& plan) {
     slam::load_sim_detector_config(
         overrides_to_node(cell_overrides(plan, cell, ParameterTarget::kDetector), "detector"),
         cell.label + " (detector settings)");
-    cli::RunOptions options;
+    runner::RunOptions options;
     for (const auto& s : cell_overrides(plan, cell, ParameterTarget::kRejection))
-      cli::apply_rejection_setting(options, s, cell.label + " (rejection." + s.key + ")");
+      runner::apply_rejection_setting(options, s, cell.label + " (rejection." + s.key + ")");
   }
 }
 
@@ -132,7 +132,7 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
 
   fs::create_directories(fs::path(layout.run_dir(job.id)).parent_path());
   StagedDirectory out(layout.run_dir(job.id), /*overwrite=*/true);
-  cli::RunOptions options;
+  runner::RunOptions options;
   options.dataset = dataset;
   options.mode = job.mode;
   options.sync = plan.spec.sync_mapping;
@@ -140,10 +140,10 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
   options.detector_seed = static_cast<uint64_t>(job.seed);
   options.detector_overrides = cell_overrides(plan, cell, ParameterTarget::kDetector);
   for (const auto& setting : cell_overrides(plan, cell, ParameterTarget::kRejection))
-    cli::apply_rejection_setting(options, setting, "rejection." + setting.key);
+    runner::apply_rejection_setting(options, setting, "rejection." + setting.key);
   options.stats_csv = (fs::path(out.path()) / "stats.csv").string();
   try {
-    const cli::RunSummary s = cli::run_sequence(options);
+    const runner::RunSummary s = runner::run_sequence(options);
     r.frames = static_cast<int>(s.frames);
     r.tracked = static_cast<int>(s.trajectory.size());
     r.lost = s.lost;

@@ -1,4 +1,4 @@
-#include "tools/depot/slam_runner.h"
+#include "tools/runner/slam_runner.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,7 +22,7 @@
 
 namespace fs = std::filesystem;
 
-namespace depot::cli {
+namespace depot::runner {
 namespace {
 
 std::string shipped(const std::string& relative) {
@@ -229,4 +229,4 @@ RunSummary run_sequence(const RunOptions& o) {
   return summary;
 }
 
-}  // namespace depot::cli
+}  // namespace depot::runner

@@ -13,7 +13,7 @@
 #include "eval/motion_truth.h"
 #include "slam/reject/rejection_filter.h"
 
-namespace depot::cli {
+namespace depot::runner {
 
 struct RunOptions {
   std::string dataset;
@@ -68,4 +68,4 @@ RejectionSetup make_rejection(const RunOptions& options);
 
 RunSummary run_sequence(const RunOptions& options);
 
-}  // namespace depot::cli
+}  // namespace depot::runner
