@@ -1,7 +1,9 @@
 // `depot slam run` and `depot eval` on bad input: one clear error line, a
 // non-zero exit, and no trajectory written.
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
@@ -87,6 +89,65 @@ TEST(CliSlam, RunsAndWritesATumTrajectory) {
   DepotResult ate = depot("eval ate " + d + "/groundtruth.txt " + out);
   EXPECT_EQ(ate.code, 0) << ate.output;
   EXPECT_NE(ate.output.find("rmse"), std::string::npos);
+}
+
+TEST(CliSlam, WritesOneRowPerKeypointConsistentWithTheStatistics) {
+  std::string d = render_small({"depot_walking_xyz", 12, 320, false});
+  const std::string out = temp_path("traj") + ".txt", rows = temp_path("kps") + ".csv",
+                    stats = temp_path("stats") + ".csv";
+  DepotResult r = depot("slam run " + d + " -o " + out + " --mode full --sync -q --keypoints " +
+                        rows + " --stats " + stats);
+  ASSERT_EQ(r.code, 0) << r.output;
+  // Per frame from the statistics: keypoints and kept.
+  std::map<int, std::pair<int, int>> expected;  // frame -> (keypoints, kept)
+  std::ifstream s(stats);
+  std::string line;
+  std::getline(s, line);
+  while (std::getline(s, line)) {
+    int frame, total, kept;
+    char state[32];
+    double t;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%lf,%31[^,],%d,%d", &frame, &t, state, &total, &kept),
+              5)
+        << line;
+    expected[frame] = {total, kept};
+  }
+  ASSERT_EQ(expected.size(), 12u);
+  std::map<int, std::pair<int, int>> seen;
+  int on_moving = 0, rejected_z = 0;
+  std::ifstream k(rows);
+  std::getline(k, line);
+  EXPECT_EQ(line, "frame,timestamp,x,y,octave,set,kept,depth_m,on_moving,near_moving");
+  while (std::getline(k, line)) {
+    int frame, octave, kept, moving, near;
+    double t, x, y, depth;
+    char set;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%lf,%lf,%lf,%d,%c,%d,%lf,%d,%d", &frame, &t, &x, &y,
+                          &octave, &set, &kept, &depth, &moving, &near),
+              10)
+        << line;
+    EXPECT_TRUE(set == 'Z' || set == 'Q' || set == 'P') << line;
+    if (set == 'Z') {
+      EXPECT_EQ(kept, 0) << line;  // Z is always rejected
+    }
+    EXPECT_GE(depth, 0.0);
+    EXPECT_TRUE(!moving || near) << line;  // on a mover is also near one
+    seen[frame].first++;
+    seen[frame].second += kept;
+    on_moving += moving;
+    rejected_z += set == 'Z';
+  }
+  EXPECT_EQ(seen, expected);
+  EXPECT_GT(on_moving, 0);  // people walk through this scene
+  EXPECT_GT(rejected_z, 0);
+
+  // orb has no rejection to describe: a clear error and no file.
+  const std::string none = temp_path("none") + ".csv";
+  DepotResult orb = depot("slam run " + d + " -o " + temp_path("t2") + ".txt --mode orb -q " +
+                          "--keypoints " + none);
+  EXPECT_NE(orb.code, 0);
+  EXPECT_NE(orb.output.find("need a rejection mode"), std::string::npos) << orb.output;
+  EXPECT_FALSE(fs::exists(none));
 }
 
 }  // namespace

@@ -111,6 +111,9 @@ void register_slam_commands(CLI::App& app) {
       ->check(CLI::Range(1, 10000000));
   run->add_option("--stats", args->options.stats_csv,
                   "Per-frame statistics CSV (|Z| |Q| |Q->P| |P|, flow, times)");
+  run->add_option("--keypoints", args->options.keypoints_csv,
+                  "Per-keypoint CSV: position, set (Z/Q/P), kept, depth and, on simulated data, "
+                  "whether it is on or near a moving object (for analysing rejection)");
   run->add_flag("-q,--quiet", args->options.quiet, "No progress line");
   add_rejection_options(run, args->options);
   run->callback([args, run] { run_slam(*args, *run); });

@@ -11,6 +11,7 @@
 #include "common/interrupt.h"
 #include "common/percentile.h"
 #include "common/progress.h"
+#include "common/staged_file.h"
 #include "common/yaml_overrides.h"
 #include "slam/detect/detection_file.h"
 #include "slam/detect/detector_factory.h"
@@ -57,6 +58,38 @@ std::unique_ptr<slam::Detector> make_detector(const RunOptions& o, const std::st
                                     : shipped("scenes/detectors/yolov5s.yaml");
   }
   return slam::make_dnn_detector(slam::load_detector_config(config));
+}
+
+const char* const kKeypointHeader =
+    "frame,timestamp,x,y,octave,set,kept,depth_m,on_moving,near_moving\n";
+
+char set_letter(slam::PointSet set) {
+  return set == slam::PointSet::kZ ? 'Z' : set == slam::PointSet::kQ ? 'Q' : 'P';
+}
+
+// One row per keypoint of the frame: where it is, its set and decision, its
+// depth, and (simulated data) whether it lies on or within 4 px of a moving
+// object; empty truth columns on real data.
+void write_keypoint_rows(std::ostream& out, size_t frame, double timestamp,
+                         const slam::RejectionFilter& filter, const cv::Mat& depth,
+                         const eval::MotionTruth::KeypointTruth* truth) {
+  const auto& kps = filter.last_keypoints();
+  char line[160];
+  for (size_t k = 0; k < kps.size(); ++k) {
+    const int x = static_cast<int>(kps[k].pt.x + 0.5f), y = static_cast<int>(kps[k].pt.y + 0.5f);
+    const float d =
+        x >= 0 && y >= 0 && x < depth.cols && y < depth.rows ? depth.at<float>(y, x) : 0.0f;
+    std::snprintf(line, sizeof(line), "%zu,%.6f,%.2f,%.2f,%d,%c,%d,%.4f,", frame, timestamp,
+                  kps[k].pt.x, kps[k].pt.y, kps[k].octave, set_letter(filter.last_sets()[k]),
+                  static_cast<int>(filter.last_keep()[k]), d);
+    out << line;
+    if (truth)
+      out << static_cast<int>(truth->on_moving[k]) << ','
+          << static_cast<int>(truth->near_moving[k]);
+    else
+      out << ',';
+    out << '\n';
+  }
 }
 
 }  // namespace
@@ -132,14 +165,20 @@ RunSummary run_sequence(const RunOptions& o) {
   if (simulated) truth = std::make_unique<eval::MotionTruth>(o.dataset);
   summary.scored = truth != nullptr;
 
-  std::ofstream stats;
+  std::optional<StagedFile> stats, keypoint_rows;
   if (!o.stats_csv.empty()) {
-    stats.open(o.stats_csv + ".tmp");
-    if (!stats) fail(o.stats_csv, "cannot write statistics file");
-    stats << "frame,timestamp,state,keypoints,kept,Z,Q,Q_to_P,P,detections,flow_u,flow_v,z,wait_ms,"
-             "detect_ms,flow_ms,"
-             "filter_ms,total_ms,true_positive,false_positive,false_negative,false_positive_z,"
-             "false_positive_q\n";
+    stats.emplace(o.stats_csv);
+    stats->stream()
+        << "frame,timestamp,state,keypoints,kept,Z,Q,Q_to_P,P,detections,flow_u,flow_v,z,wait_ms,"
+           "detect_ms,flow_ms,"
+           "filter_ms,total_ms,true_positive,false_positive,false_negative,false_positive_z,"
+           "false_positive_q\n";
+  }
+  if (!o.keypoints_csv.empty()) {
+    if (!filter)
+      fail(o.keypoints_csv, "per-keypoint rows need a rejection mode (orb+yolo, orb+lk or full)");
+    keypoint_rows.emplace(o.keypoints_csv);
+    keypoint_rows->stream() << kKeypointHeader;
   }
 
   slam::System system(settings, filter);
@@ -168,9 +207,9 @@ RunSummary run_sequence(const RunOptions& o) {
     }
     eval::RejectionScore frame_score;
     long fp_z = 0, fp_q = 0;
+    eval::MotionTruth::KeypointTruth labels;
     if (truth && filter) {
-      const eval::MotionTruth::KeypointTruth labels =
-          truth->classify_keypoints(t, filter->last_keypoints(), 4);
+      labels = truth->classify_keypoints(t, filter->last_keypoints(), 4);
       const std::vector<uint8_t>& moving = labels.on_moving;
       frame_score.add(filter->last_keep(), moving);
       // Where the false rejections come from: Z (boxes) or Q (flow test);
@@ -186,7 +225,9 @@ RunSummary run_sequence(const RunOptions& o) {
       summary.score.false_negative += frame_score.false_negative;
       summary.score.true_negative += frame_score.true_negative;
     }
-    if (stats.is_open()) {
+    if (keypoint_rows)
+      write_keypoint_rows(keypoint_rows->stream(), i, t, *filter, depth, truth ? &labels : nullptr);
+    if (stats) {
       char line[512];
       std::snprintf(line, sizeof(line),
                     "%zu,%.6f,%s,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%.2f,%.2f,%ld,%"
@@ -196,7 +237,7 @@ RunSummary run_sequence(const RunOptions& o) {
                     rs.wait_ms, rs.detect_ms, rs.flow_ms, rs.filter_ms, r.timing.total_ms,
                     frame_score.true_positive, frame_score.false_positive,
                     frame_score.false_negative, fp_z, fp_q);
-      stats << line;
+      stats->stream() << line;
     }
     char detail[160];
     std::snprintf(detail, sizeof(detail), "frame %zu %s features %d/%d inliers %d %.1f ms", i,
@@ -222,10 +263,8 @@ RunSummary run_sequence(const RunOptions& o) {
   summary.detect_ms = percentile(detect_ms, 0.5);
   summary.flow_ms = percentile(flow_ms, 0.5);
   summary.ba_ms_total = system.mapping_stats().ba_ms;
-  if (stats.is_open()) {
-    stats.close();
-    fs::rename(o.stats_csv + ".tmp", o.stats_csv);
-  }
+  if (stats) stats->commit();
+  if (keypoint_rows) keypoint_rows->commit();
   return summary;
 }
 

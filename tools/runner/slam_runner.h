@@ -30,6 +30,7 @@ struct RunOptions {
   bool sync = false;
   bool quiet = false;
   std::string stats_csv;                 // per-frame statistics
+  std::string keypoints_csv;             // per-keypoint sets, decisions, depth and truth
   float background_depth_margin = 0.0f;  // our extension of `full` (0 = paper)
   bool ego_motion_flow = false;          // our extension: flow test against camera motion
   bool test_static_points = false;       // our extension: flow test on P too
