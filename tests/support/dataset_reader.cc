@@ -6,9 +6,12 @@
 #include <array>
 #include <atomic>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <sstream>
+#include <stdexcept>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -105,11 +108,39 @@ Dataset read_dataset(const std::string& root) {
   return d;
 }
 
+namespace {
+
+fs::path& test_root_path() {
+  static fs::path root;
+  return root;
+}
+
+void remove_test_root() {
+  std::error_code ec;
+  fs::remove_all(test_root_path(), ec);
+}
+
+// One new folder per test process, made by mkdtemp so it can never be the
+// leftover of an earlier process that had the same id, and removed when the
+// process exits (set DEPOT_KEEP_TEST_FILES to keep it for a post-mortem) so
+// test runs do not fill the temporary folder.
+const fs::path& test_root() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    std::string pattern = (fs::temp_directory_path() / "depot_test_XXXXXX").string();
+    if (!::mkdtemp(pattern.data()))
+      throw std::runtime_error("cannot create a test folder like " + pattern);
+    test_root_path() = pattern;
+    if (!std::getenv("DEPOT_KEEP_TEST_FILES")) std::atexit(remove_test_root);
+  });
+  return test_root_path();
+}
+
+}  // namespace
+
 std::string temp_path(const std::string& tag) {
   static std::atomic<int> counter{0};
-  return (fs::temp_directory_path() /
-          ("depot_test_" + tag + "_" + std::to_string(getpid()) + "_" + std::to_string(counter++)))
-      .string();
+  return (test_root() / (tag + "_" + std::to_string(counter++))).string();
 }
 
 int run_command(const std::string& command, std::string* output) {

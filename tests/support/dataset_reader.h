@@ -48,7 +48,8 @@ struct Dataset {
 
 Dataset read_dataset(const std::string& root);
 
-// A unique empty temp folder path (not created).
+// A path that does not exist yet, inside this test process's own temporary
+// folder (removed when the process exits).
 std::string temp_path(const std::string& tag);
 
 // Runs a shell command, returning exit code; stdout/stderr captured.
