@@ -9,6 +9,17 @@ bool inside(const cv::Rect2f& box, const cv::Point2f& p) {
 
 }  // namespace
 
+std::vector<float> keypoint_depths(const cv::Mat& depth,
+                                   const std::vector<cv::KeyPoint>& keypoints) {
+  std::vector<float> out(keypoints.size(), 0.0f);
+  for (size_t i = 0; i < keypoints.size(); ++i) {
+    const int x = static_cast<int>(keypoints[i].pt.x + 0.5f),
+              y = static_cast<int>(keypoints[i].pt.y + 0.5f);
+    if (x >= 0 && y >= 0 && x < depth.cols && y < depth.rows) out[i] = depth.at<float>(y, x);
+  }
+  return out;
+}
+
 std::vector<PointSet> assign_point_sets(const std::vector<cv::KeyPoint>& keypoints,
                                         const std::vector<Detection>& detections,
                                         const AprioriClasses& classes) {

@@ -20,6 +20,11 @@ std::vector<PointSet> assign_point_sets(const std::vector<cv::KeyPoint>& keypoin
                                         const std::vector<Detection>& detections,
                                         const AprioriClasses& classes);
 
+// The depth (m) at each keypoint's pixel in a CV_32F depth image; 0 where
+// there is none or the keypoint lies outside the image.
+std::vector<float> keypoint_depths(const cv::Mat& depth,
+                                   const std::vector<cv::KeyPoint>& keypoints);
+
 // Our extension (off unless a margin is given): the boxes are for objects
 // the depth sensor sees, so a boxed point that is not at its object's depth
 // is background seen around or through the object, and goes to P:

@@ -13,16 +13,6 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::vector<float> depth_at(const cv::Mat& depth, const std::vector<cv::KeyPoint>& keypoints) {
-  std::vector<float> out(keypoints.size(), 0.0f);
-  for (size_t i = 0; i < keypoints.size(); ++i) {
-    const int x = static_cast<int>(keypoints[i].pt.x + 0.5f),
-              y = static_cast<int>(keypoints[i].pt.y + 0.5f);
-    if (x >= 0 && y >= 0 && x < depth.cols && y < depth.rows) out[i] = depth.at<float>(y, x);
-  }
-  return out;
-}
-
 }  // namespace
 
 RejectionMode parse_rejection_mode(const std::string& name) {
@@ -140,7 +130,7 @@ void RejectionFilter::filter_full(const FrameImages& images,
   std::vector<PointSet> sets = assign_point_sets(keypoints, detections_, classes_);
   const bool ego = params_.ego_motion_flow && images.camera;
   std::vector<float> depth;
-  if (params_.background_depth_margin > 0 || ego) depth = depth_at(images.depth, keypoints);
+  if (params_.background_depth_margin > 0 || ego) depth = keypoint_depths(images.depth, keypoints);
   if (params_.background_depth_margin > 0)
     split_boxes_by_depth(keypoints, depth, detections_, classes_, params_.background_depth_margin,
                          sets);

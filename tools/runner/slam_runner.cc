@@ -74,14 +74,12 @@ void write_keypoint_rows(std::ostream& out, size_t frame, double timestamp,
                          const slam::RejectionFilter& filter, const cv::Mat& depth,
                          const eval::MotionTruth::KeypointTruth* truth) {
   const auto& kps = filter.last_keypoints();
+  const std::vector<float> depths = slam::keypoint_depths(depth, kps);
   char line[160];
   for (size_t k = 0; k < kps.size(); ++k) {
-    const int x = static_cast<int>(kps[k].pt.x + 0.5f), y = static_cast<int>(kps[k].pt.y + 0.5f);
-    const float d =
-        x >= 0 && y >= 0 && x < depth.cols && y < depth.rows ? depth.at<float>(y, x) : 0.0f;
     std::snprintf(line, sizeof(line), "%zu,%.6f,%.2f,%.2f,%d,%c,%d,%.4f,", frame, timestamp,
                   kps[k].pt.x, kps[k].pt.y, kps[k].octave, set_letter(filter.last_sets()[k]),
-                  static_cast<int>(filter.last_keep()[k]), d);
+                  static_cast<int>(filter.last_keep()[k]), depths[k]);
     out << line;
     if (truth)
       out << static_cast<int>(truth->on_moving[k]) << ','
