@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <utility>
 
 #include "eval/improvement.h"
 
@@ -24,30 +25,38 @@ MeanStd mean_std(const std::vector<double>& values) {
   return out;
 }
 
-double paired_improvement(const CellModeSummary& baseline, const CellModeSummary& ours,
-                          double RunRecord::*figure) {
-  double sum_base = 0, sum_ours = 0;
-  int n = 0;
+namespace {
+
+// (baseline, ours) of one figure on every seed where both are finite.
+std::vector<std::pair<double, double>> paired_values(const CellModeSummary& baseline,
+                                                     const CellModeSummary& ours,
+                                                     double RunRecord::*figure) {
+  std::vector<std::pair<double, double>> out;
   for (const auto& [seed, run] : ours.runs_by_seed) {
     auto it = baseline.runs_by_seed.find(seed);
     if (it == baseline.runs_by_seed.end()) continue;
     const double b = it->second.*figure, o = run.*figure;
-    if (!std::isfinite(b) || !std::isfinite(o)) continue;
-    sum_base += b, sum_ours += o, ++n;
+    if (std::isfinite(b) && std::isfinite(o)) out.emplace_back(b, o);
   }
-  if (n == 0 || sum_base <= 0) return NAN;
+  return out;
+}
+
+}  // namespace
+
+double paired_improvement(const CellModeSummary& baseline, const CellModeSummary& ours,
+                          double RunRecord::*figure) {
+  double sum_base = 0, sum_ours = 0;
+  const auto pairs = paired_values(baseline, ours, figure);
+  for (const auto& [b, o] : pairs) sum_base += b, sum_ours += o;
+  if (pairs.empty() || sum_base <= 0) return NAN;
+  const double n = static_cast<double>(pairs.size());
   return eval::improvement_percent(sum_base / n, sum_ours / n);
 }
 
 PairedDifference paired_difference(const CellModeSummary& baseline, const CellModeSummary& ours,
                                    double RunRecord::*figure) {
   std::vector<double> diffs;
-  for (const auto& [seed, run] : ours.runs_by_seed) {
-    auto it = baseline.runs_by_seed.find(seed);
-    if (it == baseline.runs_by_seed.end()) continue;
-    const double b = it->second.*figure, o = run.*figure;
-    if (std::isfinite(b) && std::isfinite(o)) diffs.push_back(o - b);
-  }
+  for (const auto& [b, o] : paired_values(baseline, ours, figure)) diffs.push_back(o - b);
   PairedDifference out;
   out.difference = mean_std(diffs);
   const double n = static_cast<double>(diffs.size());

@@ -102,8 +102,9 @@ Table ablation_table(const SweepPlan& plan, const SweepSummary& s) {
       const CellModeSummary &orb = *s.find(c, "orb"), &ours = *s.find(c, cmp);
       row.push_back(number(paired_improvement(orb, ours, &RunRecord::ate_rmse)));
       const PairedDifference d = paired_difference(orb, ours, &RunRecord::ate_rmse);
-      row.push_back(
-          number(1000 * d.difference.mean, d.difference.count > 1 ? 1000 * d.difference.std : NAN));
+      MeanStd mm = d.difference;  // m -> mm
+      mm.mean *= 1000, mm.std *= 1000;
+      row.push_back(number(mm));
       row.push_back(number(d.t));
     }
     row.push_back(text(runs_text(plan, s, c)));
