@@ -123,9 +123,8 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
   RunRecord r;
   r.id = job.id;
   r.scenario = plan.spec.scenarios.at(cell.scenario).name;
-  for (size_t k = 0; k < plan.spec.vary.size(); ++k)  // the levels this run depends on
-    if (parameter_affects_mode(resolve_parameter(plan.spec.vary[k].name).target, job.mode))
-      r.parameters[plan.spec.vary[k].name] = cell.levels[k];
+  for (const auto& [name, level] : run_levels(plan.spec, cell, job.mode))
+    r.parameters[name] = level;
   r.seed = job.seed;
   r.mode = job.mode;
   r.moving_share = read_dataset_record(layout.dataset_record(job.dataset_id)).moving_share_mean;

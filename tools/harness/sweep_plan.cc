@@ -33,6 +33,16 @@ bool parameter_affects_mode(ParameterTarget target, const std::string& mode) {
   return true;
 }
 
+std::vector<std::pair<std::string, std::string>> run_levels(const SweepSpec& spec,
+                                                            const SweepCell& cell,
+                                                            const std::string& mode) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (size_t k = 0; k < spec.vary.size(); ++k)
+    if (parameter_affects_mode(resolve_parameter(spec.vary[k].name).target, mode))
+      out.emplace_back(spec.vary[k].name, cell.levels[k]);
+  return out;
+}
+
 SweepPlan make_sweep_plan(const SweepSpec& spec) {
   validate(spec, "sweep");
   SweepPlan plan;
@@ -92,10 +102,8 @@ SweepPlan make_sweep_plan(const SweepSpec& spec) {
       for (const auto& mode : spec.modes) {
         // The run's id names only the levels that matter to its mode.
         std::string run_key = file_safe(spec.scenarios[plan.cells[c].scenario].name);
-        for (size_t k = 0; k < spec.vary.size(); ++k)
-          if (parameter_affects_mode(resolve_parameter(spec.vary[k].name).target, mode))
-            run_key +=
-                "__" + file_safe(spec.vary[k].name) + "-" + file_safe(plan.cells[c].levels[k]);
+        for (const auto& [name, level] : run_levels(spec, plan.cells[c], mode))
+          run_key += "__" + file_safe(name) + "-" + file_safe(level);
         const std::string id = run_key + "__s" + std::to_string(seed) + "__" + file_safe(mode);
         if (auto it = run_of.find(id); it != run_of.end()) {
           plan.jobs[it->second].cells.push_back(c);

@@ -5,6 +5,7 @@
 // reads it. Ids are stable (derived from names and levels), so a resumed
 // sweep or a cluster array task finds the same job under the same id.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/yaml_overrides.h"
@@ -23,12 +24,13 @@ enum class JobKind { kRender, kSlam };
 
 struct SweepJob {
   JobKind kind = JobKind::kRender;
-  std::string id;  // render: the dataset id; slam: dataset id + "__" + mode
-  size_t cell = 0;
+  // render: the dataset id (scenario, scenario levels, seed); slam: the
+  // scenario, the levels its mode depends on (run_levels), seed and mode
+  std::string id;
+  size_t cell = 0;  // render: a cell with this dataset's scenario settings; slam: its first cell
   int seed = 1;
   std::string mode;        // slam jobs only
   std::string dataset_id;  // the dataset a slam job reads (its own id for render)
-  // render: a cell with this dataset's scenario settings; slam: its cell
   // slam: every cell this run stands for. A mode that ignores a varied
   // parameter (orb ignores the detector's and the rejection's) runs once for
   // all of that parameter's levels, and its result counts in each cell.
@@ -52,6 +54,12 @@ SweepPlan make_sweep_plan(const SweepSpec& spec);
 // scenario's always; the detector's only where a detector runs (orb+yolo,
 // full); the rejection extensions' only in full.
 bool parameter_affects_mode(ParameterTarget target, const std::string& mode);
+
+// The varied parameters a run in this mode depends on, each with the cell's
+// level, in the spec's order: what names the run and what its record keeps.
+std::vector<std::pair<std::string, std::string>> run_levels(const SweepSpec& spec,
+                                                            const SweepCell& cell,
+                                                            const std::string& mode);
 
 // Throws Error("<sweep>: no job '<id>'").
 const SweepJob& find_job(const SweepPlan& plan, const std::string& id, const std::string& sweep);
