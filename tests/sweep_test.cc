@@ -149,6 +149,16 @@ TEST(Sweep, ResumesAfterBeingKilledAndReports) {
   EXPECT_EQ(again.code, 0);
   EXPECT_NE(again.output.find("0 to run"), std::string::npos) << again.output;
   for (const auto& p : after) EXPECT_TRUE(fs::exists(p));
+
+  // A dataset left behind by a runner stopped between its last run and the
+  // clean-up (a kill can land there) is removed by the next resume.
+  const fs::path left = sweep / "data" / "depot_walking_xyz__load-0__s1";
+  fs::create_directories(left);
+  std::ofstream(left / "rgb.txt") << "# left behind\n";
+  const test::DepotResult tidy = test::depot("sweep resume " + sweep.string());
+  EXPECT_EQ(tidy.code, 0) << tidy.output;
+  EXPECT_FALSE(fs::exists(left)) << tidy.output;
+  EXPECT_TRUE(fs::exists(sweep / "data" / "depot_walking_xyz__load-0__s1.json"));
 }
 
 TEST(Sweep, RefusesBadGridsBeforeRunningAnything) {

@@ -52,6 +52,12 @@ void remove_leftovers(const SweepLayout& layout) {
   }
 }
 
+// A dataset all of whose runs are done (its record stays).
+void remove_dataset(const SweepLayout& layout, const std::string& id) {
+  std::error_code ec;
+  fs::remove_all(layout.dataset_dir(id), ec);
+}
+
 std::string describe(const SweepJob& job, const SweepLayout& layout) {
   char buf[256];
   if (job.kind == JobKind::kRender) {
@@ -109,6 +115,9 @@ SweepRunResult run_sweep(const SweepPlan& plan, const SweepLayout& layout,
         job_finished(layout, job) && fs::is_directory(layout.dataset_dir(job.id));
     if (it == pending_runs_of.end()) {
       result.already_finished += job_finished(layout, job);
+      // Every run of it is done: a runner stopped between its last run and
+      // the clean-up left the dataset behind.
+      if (!plan.spec.keep_data) remove_dataset(layout, job.id);
       continue;
     }
     std::vector<size_t> needs;
@@ -157,10 +166,8 @@ SweepRunResult run_sweep(const SweepPlan& plan, const SweepLayout& layout,
       line = job.id + ": FAILED (exit " + std::to_string(outcome.exit_code) + "), see " +
              layout.log_file(job.id);
     }
-    if (job.kind == JobKind::kSlam && --runs_left[job.dataset_id] == 0 && !plan.spec.keep_data) {
-      std::error_code ec;
-      fs::remove_all(layout.dataset_dir(job.dataset_id), ec);
-    }
+    if (job.kind == JobKind::kSlam && --runs_left[job.dataset_id] == 0 && !plan.spec.keep_data)
+      remove_dataset(layout, job.dataset_id);
     if (options.progress) {
       const double elapsed =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
