@@ -18,6 +18,12 @@ std::string shared_data_dir() {
   return DEPOT_SHARED_DATA_DEFAULT;
 }
 
+std::string project_file(const std::string& relative) {
+  const char* env = std::getenv("DEPOT_HOME");
+  const fs::path root = env && *env ? fs::path(env) : fs::path(DEPOT_PROJECT_DIR);
+  return (root / relative).lexically_normal().string();
+}
+
 bool names_shared_data(const std::string& value) {
   return value.compare(0, kPlaceholder.size(), kPlaceholder) == 0;
 }

@@ -21,6 +21,12 @@ std::string shared_data_dir();
 // config_dir/value; an absolute path unchanged. Lexically normalised.
 std::string resolve_config_path(const std::string& value, const std::string& config_dir);
 
+// A file shipped with the project (e.g. "scenes/depot.yaml"): defaults that
+// configuration files need not name resolve here, never relative to a
+// user's file, so a copied scenario still finds them. The folder is
+// $DEPOT_HOME when set, otherwise the source tree the build came from.
+std::string project_file(const std::string& relative);
+
 // True when `value` names the shared data folder (for error hints).
 bool names_shared_data(const std::string& value);
 

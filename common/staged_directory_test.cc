@@ -3,16 +3,20 @@
 #include <filesystem>
 #include <fstream>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <gtest/gtest.h>
 
 #include "common/error.h"
+#include "common/testing/error_of.h"
 
 namespace fs = std::filesystem;
 
 namespace depot {
 namespace {
+
+const OutputKind kKind{"test output", "marker.json", {"marker.json", "a.txt", "data"}};
 
 fs::path fresh(const std::string& name) {
   fs::path p = fs::temp_directory_path() / ("depot_staged_" + name);
@@ -23,7 +27,7 @@ fs::path fresh(const std::string& name) {
 TEST(StagedDirectory, AppearsOnlyWhenCommitted) {
   fs::path out = fresh("commit");
   {
-    StagedDirectory dir(out.string(), false);
+    StagedDirectory dir(out.string(), kKind, false);
     std::ofstream(fs::path(dir.path()) / "a.txt") << "x";
     EXPECT_FALSE(fs::exists(out));
     dir.commit();
@@ -35,7 +39,7 @@ TEST(StagedDirectory, FailureLeavesNothing) {
   fs::path out = fresh("abort");
   std::string staging;
   try {
-    StagedDirectory dir(out.string(), false);
+    StagedDirectory dir(out.string(), kKind, false);
     staging = dir.path();
     std::ofstream(fs::path(dir.path()) / "a.txt") << "x";
     throw Error("simulated failure");
@@ -49,11 +53,87 @@ TEST(StagedDirectory, RefusesNonEmptyOutputUnlessOverwrite) {
   fs::path out = fresh("exists");
   fs::create_directories(out);
   std::ofstream(out / "keep.txt") << "x";
-  EXPECT_THROW(StagedDirectory(out.string(), false), Error);
+  EXPECT_THROW(StagedDirectory(out.string(), kKind, false), Error);
   EXPECT_TRUE(fs::exists(out / "keep.txt"));
-  StagedDirectory dir(out.string(), true);
-  dir.commit();
-  EXPECT_FALSE(fs::exists(out / "keep.txt"));
+  // Not ours (no marker): refused even with overwrite.
+  EXPECT_NE(error_of([&] { StagedDirectory(out.string(), kKind, true); }).find("no marker.json"),
+            std::string::npos);
+  EXPECT_TRUE(fs::exists(out / "keep.txt"));
+}
+
+TEST(StagedDirectory, OverwriteReplacesOnlyAnOutputOfItsKind) {
+  fs::path out = fresh("ours");
+  fs::create_directories(out / "data");
+  std::ofstream(out / "marker.json") << "{}";
+  std::ofstream(out / "a.txt") << "old";
+  {
+    StagedDirectory dir(out.string(), kKind, true);
+    std::ofstream(fs::path(dir.path()) / "marker.json") << "{}";
+    std::ofstream(fs::path(dir.path()) / "a.txt") << "new";
+    EXPECT_TRUE(fs::exists(out / "data")) << "the old output stays until the new one is whole";
+    dir.commit();
+  }
+  std::ifstream in(out / "a.txt");
+  std::string text;
+  in >> text;
+  EXPECT_EQ(text, "new");
+  EXPECT_FALSE(fs::exists(out / "data"));
+  for (const auto& e : fs::directory_iterator(out.parent_path()))
+    EXPECT_EQ(e.path().string().find("depot_staged_ours."), std::string::npos) << e.path();
+
+  // A file the kind never writes makes the folder the user's.
+  std::ofstream(out / "notes.txt") << "mine";
+  EXPECT_NE(error_of([&] { StagedDirectory(out.string(), kKind, true); }).find("notes.txt"),
+            std::string::npos);
+  EXPECT_TRUE(fs::exists(out / "notes.txt"));
+}
+
+TEST(StagedDirectory, RefusesTheCurrentFolderAndItsParents) {
+  fs::path out = fresh("cwd");
+  fs::create_directories(out / "inner");
+  std::ofstream(out / "marker.json") << "{}";
+  const fs::path before = fs::current_path();
+  fs::current_path(out / "inner");
+  const std::string error = error_of([&] { StagedDirectory(out.string(), kKind, true); });
+  const std::string error_dot = error_of([&] { StagedDirectory(".", kKind, true); });
+  fs::current_path(before);
+  EXPECT_NE(error.find("current folder"), std::string::npos) << error;
+  EXPECT_NE(error_dot.find("current folder"), std::string::npos) << error_dot;
+  EXPECT_TRUE(fs::exists(out / "inner"));
+}
+
+TEST(StagedDirectory, RemovesPartialFoldersOfDeadProcessesOnly) {
+  fs::path out = fresh("stale");
+  const pid_t child = fork();
+  if (child == 0) _exit(0);
+  int status = 0;
+  waitpid(child, &status, 0);  // a pid whose process is gone
+  const fs::path dead = out.string() + ".partial-" + std::to_string(child);
+  const fs::path live = out.string() + ".partial-" + std::to_string(getppid());
+  fs::create_directories(dead);
+  fs::create_directories(live);
+  std::ofstream(dead / "a.txt") << "x";
+  {
+    StagedDirectory dir(out.string(), kKind, false);
+    EXPECT_FALSE(fs::exists(dead));
+    EXPECT_TRUE(fs::exists(live));
+  }
+  fs::remove_all(live);
+}
+
+TEST(StagedDirectory, PutsBackAnOutputMovedAsideByAKilledCommit) {
+  fs::path out = fresh("aside");
+  const pid_t child = fork();
+  if (child == 0) _exit(0);
+  int status = 0;
+  waitpid(child, &status, 0);
+  const fs::path aside = out.string() + ".replaced-" + std::to_string(child);
+  fs::remove_all(aside);
+  fs::create_directories(aside);
+  std::ofstream(aside / "marker.json") << "{}";
+  { StagedDirectory dir(out.string(), kKind, false); }
+  EXPECT_TRUE(fs::exists(out / "marker.json"));
+  EXPECT_FALSE(fs::exists(aside));
 }
 
 TEST(StagedDirectory, UnwritableParentIsAnError) {
@@ -61,9 +141,9 @@ TEST(StagedDirectory, UnwritableParentIsAnError) {
     // root can write anywhere; use a path under a regular file instead.
     fs::path file = fresh("file");
     std::ofstream(file) << "x";
-    EXPECT_THROW(StagedDirectory((file / "out").string(), false), Error);
+    EXPECT_THROW(StagedDirectory((file / "out").string(), kKind, false), Error);
   } else {
-    EXPECT_THROW(StagedDirectory("/proc/depot_out", false), Error);
+    EXPECT_THROW(StagedDirectory("/proc/depot_out", kKind, false), Error);
   }
 }
 

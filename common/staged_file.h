@@ -28,4 +28,9 @@ class StagedFile {
   bool committed_ = false;
 };
 
+// Checks, before a long job starts, that `final_path` can be written at its
+// end: not a folder, its folder exists and takes a new file. Throws
+// depot::Error naming the path and the problem; leaves nothing behind.
+void check_output_file(const std::string& final_path);
+
 }  // namespace depot

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/staged_file.h"
 
 namespace depot {
 namespace {
@@ -19,6 +20,8 @@ struct Row {
 };
 
 std::vector<Row> read_rows(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) fail(path, "is a folder, not a TUM text file");
   std::ifstream in(path);
   if (!in) fail(path, "cannot open file");
   std::vector<Row> rows;
@@ -73,12 +76,22 @@ std::vector<StampedPose> read_tum_trajectory(const std::string& path) {
   double prev = -INFINITY;
   for (const Row& row : read_rows(path)) {
     require_fields(path, row, 8, "timestamp tx ty tz qx qy qz qw");
+    if (row.fields.size() > 8)
+      fail(where(path, row), "expected 8 fields (timestamp tx ty tz qx qy qz qw), found " +
+                                 std::to_string(row.fields.size()) +
+                                 " (comments are lines starting with '#')");
     double v[8];
     for (size_t i = 0; i < 8; ++i) v[i] = parse_number(path, row, i);
     require_increasing(path, row, prev, v[0]);
     prev = v[0];
     Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
-    if (std::abs(q.norm() - 1.0) > 0.1) fail(where(path, row), "quaternion is not unit length");
+    if (!(std::abs(q.norm() - 1.0) <= kQuaternionNormTolerance)) {
+      char norm[32];
+      std::snprintf(norm, sizeof(norm), "%.6g", q.norm());
+      fail(where(path, row), std::string("quaternion is not unit length (norm ") + norm +
+                                 ", allowed 1 +- " + std::to_string(kQuaternionNormTolerance) +
+                                 ")");
+    }
     out.push_back({v[0], make_pose(q, Eigen::Vector3d(v[1], v[2], v[3]))});
   }
   if (out.empty()) fail(path, "no poses in trajectory file");
@@ -97,24 +110,9 @@ std::string format_tum_pose(const StampedPose& p) {
 }
 
 void write_text_file_atomic(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) fail(path, "cannot write file");
-    out << text;
-    out.flush();
-    if (!out) {
-      std::error_code ec;
-      std::filesystem::remove(tmp, ec);
-      fail(path, "write failed");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    fail(path, "cannot move temporary file into place");
-  }
+  StagedFile file(path);
+  file.stream() << text;
+  file.commit();
 }
 
 void write_tum_trajectory(const std::string& path, const std::vector<StampedPose>& poses,

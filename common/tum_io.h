@@ -27,6 +27,11 @@ struct Association {
   std::string depth_path;
 };
 
+// A trajectory line has exactly 8 fields; its quaternion's norm must be
+// within this of 1 (files with four decimals stay below 0.0002), and is then
+// normalised.
+inline constexpr double kQuaternionNormTolerance = 1e-3;
+
 std::vector<StampedPose> read_tum_trajectory(const std::string& path);
 // Writes atomically (temp file + rename). Quaternions are normalised.
 void write_tum_trajectory(const std::string& path, const std::vector<StampedPose>& poses,

@@ -49,6 +49,41 @@ TEST(TumIo, ErrorsNameFileAndLine) {
       Error);
 }
 
+std::string trajectory_error(const std::string& name, const std::string& text) {
+  try {
+    read_tum_trajectory(write_temp(name, text));
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(TumIo, QuaternionsMustBeUnitWithinTheStatedTolerance) {
+  // Four decimals (as TUM's own files) pass; 1.05 does not.
+  EXPECT_EQ(trajectory_error("q4.txt", "1.0 0 0 0 0.6124 0.3536 0.3536 0.6124\n"), "");
+  const std::string e = trajectory_error("q105.txt", "1.0 0 0 0 0 0 0 1.05\n");
+  EXPECT_NE(e.find("q105.txt:1: quaternion is not unit length (norm 1.05"), std::string::npos) << e;
+  EXPECT_NE(trajectory_error("q1002.txt", "1.0 0 0 0 0 0 0 1.002\n"), "");
+}
+
+TEST(TumIo, ExtraColumnsAreRefused) {
+  const std::string e = trajectory_error("nine.txt", "# c\n1.0 0 0 0 0 0 0 1 7\n");
+  EXPECT_NE(e.find("nine.txt:2: expected 8 fields"), std::string::npos) << e;
+  EXPECT_NE(e.find("found 9"), std::string::npos) << e;
+}
+
+TEST(TumIo, AFolderIsNotATextFile) {
+  const auto folder = std::filesystem::temp_directory_path() / "depot_tum_io_folder";
+  std::filesystem::create_directories(folder);
+  EXPECT_NE(trajectory_error("unused.txt", "").size(), 0u);
+  try {
+    read_tum_trajectory(folder.string());
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("is a folder"), std::string::npos) << e.what();
+  }
+}
+
 TEST(TumIo, DetectsFileKinds) {
   EXPECT_EQ(detect_tum_file_kind(write_temp("k1.txt", "1.0 0 0 0 0 0 0 1\n")),
             TumFileKind::kTrajectory);

@@ -6,9 +6,8 @@
 #include <fstream>
 #include <sstream>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "common/error.h"
+#include "common/png_codec.h"
 #include "common/tum_io.h"
 
 namespace fs = std::filesystem;
@@ -56,8 +55,8 @@ cv::Mat MotionTruth::load_labels(const std::string& key) const {
   auto it = label_files_.find(key);
   if (it == label_files_.end()) fail(root_, "no label image for timestamp " + key);
   const std::string path = (fs::path(root_) / it->second).string();
-  cv::Mat labels = cv::imread(path, cv::IMREAD_UNCHANGED);
-  if (labels.empty() || labels.type() != CV_16UC1) fail(path, "label image missing or not 16-bit");
+  cv::Mat labels = read_image(path, ImageRead::kUnchanged);
+  if (labels.type() != CV_16UC1) fail(path, "label image is not 16-bit single-channel");
   return labels;
 }
 

@@ -30,6 +30,13 @@ std::string log_tick_label(int exponent) {
   return buf;
 }
 
+void draw_marker(SvgDocument& svg, Point2 at, const PlotSeries& series) {
+  if (series.marker == PlotMarker::kSquare)
+    svg.rect(at.x - 3.5, at.y - 3.5, 7, 7, series.colour);
+  else
+    svg.circle(at, 3.5, series.colour);
+}
+
 }  // namespace
 
 std::string series_colour(size_t index) {
@@ -141,13 +148,13 @@ std::string render_series_plot_svg(const SeriesPlot& plot) {
         svg.line({p.x - 4, ya}, {p.x + 4, ya}, bar);
         svg.line({p.x - 4, yb}, {p.x + 4, yb}, bar);
       }
-      svg.circle(p, 3.5, s.colour);
+      draw_marker(svg, p, s);
     }
     flush();
     // Legend entry.
     const double ly = kTop + 10 + 20 * k;
     svg.line({right + 14, ly}, {right + 40, ly}, line);
-    svg.circle({right + 27, ly}, 3.5, s.colour);
+    draw_marker(svg, {right + 27, ly}, s);
     TextStyle legend;
     legend.size = 12;
     svg.text({right + 46, ly + 4}, s.name, legend);

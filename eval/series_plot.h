@@ -8,12 +8,17 @@
 
 namespace depot::eval {
 
+// The shape drawn at each point, so series of one colour (a mode's
+// precision and recall) can be told apart, also in print.
+enum class PlotMarker { kCircle, kSquare };
+
 struct PlotSeries {
   std::string name;
   std::string colour;        // "#rrggbb"
   std::string dash;          // SVG dasharray, empty = solid
   std::vector<double> mean;  // one per x level; NaN = no value (gap)
   std::vector<double> std;   // same length; NaN or 0 = no error bar
+  PlotMarker marker = PlotMarker::kCircle;
 };
 
 struct SeriesPlot {

@@ -27,6 +27,16 @@ int count(const std::string& text, const std::string& what) {
   return n;
 }
 
+TEST(SeriesPlot, SquareMarkersTellASeriesOfTheSameColourApart) {
+  SeriesPlot p = two_modes(false);
+  p.series[1].colour = p.series[0].colour;
+  p.series[1].marker = PlotMarker::kSquare;
+  const std::string svg = render_series_plot_svg(p);
+  EXPECT_EQ(count(svg, "<circle"), 4 + 1);  // orb's points and legend marker
+  // full's 3 points and its legend marker are squares (7 px wide rects).
+  EXPECT_EQ(count(svg, "width=\"7.00\" height=\"7.00\""), 3 + 1);
+}
+
 TEST(SeriesPlot, DrawsEveryDefinedPointWithLegendAndGaps) {
   const std::string svg = render_series_plot_svg(two_modes(true));
   // 4 + 3 defined points plus one legend marker per series.

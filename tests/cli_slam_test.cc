@@ -83,7 +83,7 @@ TEST(CliSlam, MissingFolder) {
 TEST(CliSlam, RunsAndWritesATumTrajectory) {
   std::string d = render_small({"depot_static", 30, 320, false});
   const std::string out = temp_path("traj") + ".txt";
-  DepotResult r = depot("slam run " + d + " -o " + out + " --sync -q");
+  DepotResult r = depot("slam run " + d + " -o " + out + " --mapping sync -q");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("tracked 30 frames (0 lost"), std::string::npos) << r.output;
   DepotResult ate = depot("eval ate " + d + "/groundtruth.txt " + out);
@@ -95,8 +95,8 @@ TEST(CliSlam, WritesOneRowPerKeypointConsistentWithTheStatistics) {
   std::string d = render_small({"depot_walking_xyz", 12, 320, false});
   const std::string out = temp_path("traj") + ".txt", rows = temp_path("kps") + ".csv",
                     stats = temp_path("stats") + ".csv";
-  DepotResult r = depot("slam run " + d + " -o " + out + " --mode full --sync -q --keypoints " +
-                        rows + " --stats " + stats);
+  DepotResult r = depot("slam run " + d + " -o " + out +
+                        " --mode full --mapping sync -q --keypoints " + rows + " --stats " + stats);
   ASSERT_EQ(r.code, 0) << r.output;
   // Per frame from the statistics: keypoints and kept.
   std::map<int, std::pair<int, int>> expected;  // frame -> (keypoints, kept)
@@ -146,7 +146,7 @@ TEST(CliSlam, WritesOneRowPerKeypointConsistentWithTheStatistics) {
   DepotResult orb = depot("slam run " + d + " -o " + temp_path("t2") + ".txt --mode orb -q " +
                           "--keypoints " + none);
   EXPECT_NE(orb.code, 0);
-  EXPECT_NE(orb.output.find("need a rejection mode"), std::string::npos) << orb.output;
+  EXPECT_NE(orb.output.find("has no effect in --mode orb"), std::string::npos) << orb.output;
   EXPECT_FALSE(fs::exists(none));
 }
 

@@ -10,7 +10,7 @@ packages=(
   libgl-dev libopengl-dev libosmesa6-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
   libopencv-dev libpng-dev zlib1g-dev libeigen3-dev libceres-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libyaml-cpp-dev libcli11-dev libspdlog-dev nlohmann-json3-dev
+  libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   chromium
 )
 

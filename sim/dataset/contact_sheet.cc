@@ -1,24 +1,20 @@
 #include "sim/dataset/contact_sheet.h"
 
+#include <cctype>
 #include <filesystem>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "common/error.h"
+#include "common/png_codec.h"
+#include "common/staged_file.h"
 #include "common/tum_io.h"
 
 namespace fs = std::filesystem;
 
 namespace depot::sim {
 namespace {
-
-cv::Mat read_image(const fs::path& path, int flags) {
-  if (!fs::is_regular_file(path)) fail(path.string(), "image missing");
-  cv::Mat img = cv::imread(path.string(), flags);
-  if (img.empty()) fail(path.string(), "unreadable image");
-  return img;
-}
 
 cv::Scalar label_colour(uint16_t id) {
   // A fixed, well-spread colour per id.
@@ -55,6 +51,12 @@ cv::Mat colour_depth(const cv::Mat& depth16) {
 
 void write_contact_sheet(const std::string& dataset, const std::string& output,
                          const ContactSheetOptions& options) {
+  // The format follows the output's extension; checked before any work.
+  std::string ext = fs::path(output).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".png" && ext != ".jpg" && ext != ".jpeg")
+    fail(output, "unsupported image format '" + ext + "' (use .png, .jpg or .jpeg)");
+  check_output_file(output);
   const fs::path root(dataset);
   if (!fs::is_directory(root)) fail(dataset, "not a dataset folder");
   if (!fs::is_regular_file(root / "associations.txt")) fail(dataset, "associations.txt missing");
@@ -67,12 +69,12 @@ void write_contact_sheet(const std::string& dataset, const std::string& output,
   std::vector<cv::Mat> lines;
   for (int r = 0; r < rows; ++r) {
     const size_t i = rows == 1 ? 0 : r * (assoc.size() - 1) / (rows - 1);
-    cv::Mat rgb = read_image(root / assoc[i].rgb_path, cv::IMREAD_COLOR);
-    cv::Mat depth = read_image(root / assoc[i].depth_path, cv::IMREAD_UNCHANGED);
+    cv::Mat rgb = read_image((root / assoc[i].rgb_path).string(), ImageRead::kColor);
+    cv::Mat depth = read_image((root / assoc[i].depth_path).string(), ImageRead::kUnchanged);
     if (depth.type() != CV_16U) fail((root / assoc[i].depth_path).string(), "depth is not 16-bit");
     std::vector<cv::Mat> tiles{rgb, colour_depth(depth)};
     if (has_labels && i < labels.size()) {
-      cv::Mat ids = read_image(root / labels[i].path, cv::IMREAD_UNCHANGED);
+      cv::Mat ids = read_image((root / labels[i].path).string(), ImageRead::kUnchanged);
       tiles.push_back(colour_labels(ids));
     }
     for (auto& t : tiles) {
@@ -95,11 +97,12 @@ void write_contact_sheet(const std::string& dataset, const std::string& output,
   cv::putText(header, dataset + "   RGB | depth (0-5 m) | instance labels", cv::Point(8, 19),
               cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 1);
   cv::vconcat(header, sheet, sheet);
-  const std::string tmp = output + ".tmp.png";
-  if (!cv::imwrite(tmp, sheet)) fail(output, "cannot write image");
-  std::error_code ec;
-  fs::rename(tmp, output, ec);
-  if (ec) fail(output, "cannot write image");
+  std::vector<unsigned char> bytes;
+  if (!cv::imencode(ext, sheet, bytes)) fail(output, "cannot encode the image as " + ext);
+  StagedFile file(output);
+  file.stream().write(reinterpret_cast<const char*>(bytes.data()),
+                      static_cast<std::streamsize>(bytes.size()));
+  file.commit();
 }
 
 }  // namespace depot::sim

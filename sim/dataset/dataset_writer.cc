@@ -9,10 +9,10 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "common/error.h"
+#include "common/png_codec.h"
 #include "common/rng.h"
 #include "common/tum_io.h"
 #include "sim/dataset/boxes.h"
-#include "sim/dataset/png_writer.h"
 #include "sim/dataset/truth_files.h"
 #include "sim/sensor/kinect_model.h"
 
@@ -41,6 +41,16 @@ void write_png(const std::string& path, const cv::Mat& img, PngKind kind, int co
 
 }  // namespace
 
+const OutputKind& simulator_output_kind() {
+  static const OutputKind kind{
+      "dataset",
+      "info.json",
+      {"rgb", "depth", "labels", "boxes_yolo", "yolo", "rgb.txt", "depth.txt", "associations.txt",
+       "groundtruth.txt", "labels.txt", "object_poses.txt", "boxes.txt", "classes.txt",
+       "calibration.yaml", "objects.json", "info.json", "scenario.yaml", "timestamps.txt"}};
+  return kind;
+}
+
 DatasetWriter::DatasetWriter(const DatasetOptions& options, const Scenario& scenario,
                              const ClassTable& classes, const std::vector<Instance>& instances)
     : options_(options), scenario_(scenario), classes_(classes), instances_(instances) {
@@ -48,7 +58,8 @@ DatasetWriter::DatasetWriter(const DatasetOptions& options, const Scenario& scen
     fail("--writers", "writer threads must be 1..32");
   if (options_.png_compression < -1 || options_.png_compression > 9)
     fail("--png-level", "must be 0..9");
-  dir_ = std::make_unique<StagedDirectory>(options_.output, options_.overwrite);
+  dir_ = std::make_unique<StagedDirectory>(options_.output, simulator_output_kind(),
+                                           options_.overwrite);
   for (const char* sub : {"rgb", "depth", "labels", "boxes_yolo"})
     fs::create_directory(fs::path(dir_->path()) / sub);
   const std::string header = "# file: '" + scenario_.name + "' (depot-slam simulator)\n";

@@ -24,6 +24,10 @@
 
 namespace depot::sim {
 
+// The simulator's output folders (datasets, and ground-truth-only exports):
+// recognised by info.json and these entries, so --overwrite replaces only them.
+const OutputKind& simulator_output_kind();
+
 struct DatasetOptions {
   std::string output;
   bool overwrite = false;

@@ -22,7 +22,7 @@ TruthSummary export_truth(Scenario scenario, const RenderRequest& request) {
   apply_overrides(scenario, request);
   const auto start = std::chrono::steady_clock::now();
   SimulatedSequence sequence(scenario, request.gl, /*render=*/false);
-  StagedDirectory dir(request.dataset.output, request.dataset.overwrite);
+  StagedDirectory dir(request.dataset.output, simulator_output_kind(), request.dataset.overwrite);
   const std::string header = "# file: '" + scenario.name + "' (depot-slam simulator)\n";
   std::string gt = "# ground truth trajectory (camera-to-world)\n" + header +
                    "# timestamp tx ty tz qx qy qz qw\n";

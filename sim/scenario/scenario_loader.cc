@@ -9,6 +9,7 @@
 
 #include "common/config_path.h"
 #include "common/error.h"
+#include "common/image_size.h"
 #include "common/yaml_file.h"
 
 namespace fs = std::filesystem;
@@ -23,8 +24,9 @@ bool is_pushable_actor(const std::string& type) {
 }
 
 void scale_camera(CameraIntrinsics& c, int width) {
-  if (width < 16 || width > 4096) fail("--width", "image width must be 16..4096");
   const double s = static_cast<double>(width) / c.width;
+  check_image_size(width, static_cast<int>(std::lround(c.height * s)),
+                   "--width " + std::to_string(width));
   c.height = static_cast<int>(std::lround(c.height * s));
   c.width = width;
   c.f *= s;
@@ -128,7 +130,11 @@ class Fields {
     const std::string p = resolve_config_path(value, fs::path(file_).parent_path().string());
     std::error_code ec;
     if (!fs::is_regular_file(p, ec))
-      fail(where(n), "file '" + value + "' not found (" + p + ")" +
+      fail(where(n), "file '" + value + "' not found (" + p +
+                         (names_shared_data(value) || fs::path(value).is_absolute()
+                              ? ""
+                              : ", relative to the scenario's folder") +
+                         ")" +
                          (names_shared_data(value) ? "; set " + std::string(kSharedDataVariable) +
                                                          " to the shared data folder"
                                                    : ""));
@@ -145,8 +151,8 @@ const std::set<std::string> kMotionTypes = {"xyz",    "halfsphere", "rpy",
 
 void read_camera(const Fields& f, CameraIntrinsics& cam) {
   f.allow_only({"width", "height", "f", "cx", "cy", "depth_factor"});
-  cam.width = static_cast<int>(f.number("width", cam.width, 16, 4096));
-  cam.height = static_cast<int>(f.number("height", cam.height, 16, 4096));
+  cam.width = static_cast<int>(f.number("width", cam.width, kMinImageSide, kMaxImageSide));
+  cam.height = static_cast<int>(f.number("height", cam.height, kMinImageSide, kMaxImageSide));
   // Scale the default principal point and focal length with the image size.
   double sx = cam.width / 640.0;
   cam.f = f.number("f", 539.2 * sx, 1.0, 1e5);
@@ -256,12 +262,11 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
   s.source_path = path;
   s.name = top.str("name", fs::path(path).stem().string());
   s.description = top.str("description");
-  fs::path here = fs::path(path).parent_path();
-  s.scene_path = top.has("scene") ? top.existing_file("scene")
-                                  : (here / "../scenes/depot.yaml").lexically_normal().string();
-  s.classes_path = top.has("classes")
-                       ? top.existing_file("classes")
-                       : (here / "../scenes/classes.yaml").lexically_normal().string();
+  // Paths the scenario writes are relative to its own folder; the defaults
+  // are the project's shipped files wherever the scenario was copied to.
+  s.scene_path = top.has("scene") ? top.existing_file("scene") : project_file("scenes/depot.yaml");
+  s.classes_path =
+      top.has("classes") ? top.existing_file("classes") : project_file("scenes/classes.yaml");
   s.seed = top.get<uint64_t>("seed", 1);
   s.frames = static_cast<int>(top.number("frames", 300, 1, 1e6));
   s.shadows = top.get<bool>("shadows", false);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "common/error.h"
+#include "common/image_size.h"
 #include "common/yaml_file.h"
 
 namespace depot::slam {
@@ -36,8 +37,8 @@ SlamSettings load_settings(const std::string& path, const SlamSettings& defaults
   if (!root.IsMap()) fail(path, "settings must be a YAML map");
   SlamSettings s = defaults;
   const YAML::Node cam = root["camera"];
-  s.camera.width = read<int>(cam, "width", s.camera.width, path, 16, 8192);
-  s.camera.height = read<int>(cam, "height", s.camera.height, path, 16, 8192);
+  s.camera.width = read<int>(cam, "width", s.camera.width, path, kMinImageSide, kMaxImageSide);
+  s.camera.height = read<int>(cam, "height", s.camera.height, path, kMinImageSide, kMaxImageSide);
   s.camera.fx = read<double>(cam, "fx", s.camera.fx, path, 1, 1e5);
   s.camera.fy = read<double>(cam, "fy", s.camera.fy, path, 1, 1e5);
   s.camera.cx = read<double>(cam, "cx", s.camera.cx, path, 0, 8192);

@@ -2,9 +2,8 @@
 
 #include <filesystem>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "common/error.h"
+#include "common/png_codec.h"
 #include "common/tum_association.h"
 
 namespace fs = std::filesystem;
@@ -44,12 +43,9 @@ void TumSequence::load(size_t i, cv::Mat& bgr, cv::Mat& depth_metres) const {
   const Association& a = frames_.at(i);
   const fs::path rgb_path = fs::path(folder_) / a.rgb_path;
   const fs::path depth_path = fs::path(folder_) / a.depth_path;
-  if (!fs::is_regular_file(rgb_path)) fail(rgb_path.string(), "image missing");
   if (!fs::is_regular_file(depth_path)) fail(depth_path.string(), "depth image missing");
-  bgr = cv::imread(rgb_path.string(), cv::IMREAD_COLOR);
-  if (bgr.empty()) fail(rgb_path.string(), "unreadable image");
-  cv::Mat raw = cv::imread(depth_path.string(), cv::IMREAD_UNCHANGED);
-  if (raw.empty()) fail(depth_path.string(), "unreadable depth image");
+  bgr = read_image(rgb_path.string(), ImageRead::kColor);
+  cv::Mat raw = read_image(depth_path.string(), ImageRead::kUnchanged);
   if (raw.type() != CV_16UC1)
     fail(depth_path.string(), "depth must be a 16-bit single-channel PNG");
   if (raw.size() != bgr.size()) fail(depth_path.string(), "depth and colour sizes differ");

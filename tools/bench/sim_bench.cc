@@ -14,8 +14,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "common/error.h"
+#include "common/png_codec.h"
 #include "common/rng.h"
-#include "sim/dataset/png_writer.h"
 #include "sim/pipeline/render_dataset.h"
 #include "sim/scenario/scenario_loader.h"
 #include "sim/sensor/kinect_model.h"
@@ -75,9 +75,9 @@ int main(int argc, char** argv) {
                      {cv::IMWRITE_PNG_COMPRESSION, 1, cv::IMWRITE_PNG_STRATEGY,
                       cv::IMWRITE_PNG_STRATEGY_HUFFMAN_ONLY});
         auto t2 = Clock::now();
-        buf = depot::sim::encode_png(depth16, depot::sim::PngKind::kDepth);
+        buf = depot::encode_png(depth16, depot::PngKind::kDepth);
         auto t3 = Clock::now();
-        buf = depot::sim::encode_png(frame.instance, depot::sim::PngKind::kLabels);
+        buf = depot::encode_png(frame.instance, depot::PngKind::kLabels);
         auto t4 = Clock::now();
         sensor += ms(t0, t1), png_rgb += ms(t1, t2), png_depth += ms(t2, t3),
             png_labels += ms(t3, t4);

@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
   std::string dataset;
   std::string scenario = "depot_static";
   int frames = 900;
-  bool sync = false;
+  std::string mapping = "threaded";
   std::string mode = "orb";
   std::string detector_type = "sim";
   app.add_option("--mode", mode, "Rejection mode measured against plain orb in the same run")
@@ -53,8 +53,11 @@ int main(int argc, char** argv) {
   app.add_option("--dataset", dataset, "TUM folder to run (default: render --scenario first)");
   app.add_option("--scenario", scenario, "Shipped scenario to render when no dataset is given");
   app.add_option("--frames", frames, "Frames")->check(CLI::Range(10, 1000000));
-  app.add_flag("--sync", sync, "Local mapping in the tracking thread");
+  app.add_option("--mapping", mapping, "Local mapping: threaded or sync (in the tracking thread)")
+      ->check(CLI::IsMember({"sync", "threaded"}))
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  const bool sync = mapping == "sync";
   std::string rendered;
   try {
     if (dataset.empty()) {

@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "common/staged_file.h"
 #include "eval/ate.h"
 #include "eval/improvement.h"
 #include "eval/matched_trajectories.h"
@@ -86,7 +87,14 @@ void print_outputs(const CommonArgs& args) {
   if (!args.plot_path.empty()) std::printf("  plot           %s\n", args.plot_path.c_str());
 }
 
+// --json and --plot must be writable before the work, not after it.
+void check_outputs(const CommonArgs& args) {
+  if (!args.json_path.empty()) check_output_file(args.json_path);
+  if (!args.plot_path.empty()) check_output_file(args.plot_path);
+}
+
 void run_ate(const AteArgs& args) {
+  check_outputs(args.common);
   const eval::MatchedTrajectories matched = eval::load_matched_trajectories(
       args.common.reference_path, args.common.estimate_path, args.common.association);
   eval::AteOptions options;
@@ -122,6 +130,7 @@ void run_ate(const AteArgs& args) {
 }
 
 void run_rpe(const RpeArgs& args) {
+  check_outputs(args.common);
   const eval::MatchedTrajectories matched = eval::load_matched_trajectories(
       args.common.reference_path, args.common.estimate_path, args.common.association);
   eval::PairSelection selection;

@@ -1,17 +1,27 @@
 // depot: simulation, SLAM and evaluation for dynamic farm-depot scenes.
-#include <csignal>
 #include <cstdio>
 
 #include <CLI/CLI.hpp>
+#include <opencv2/core/utils/logger.hpp>
 
 #include "common/error.h"
 #include "common/interrupt.h"
+#include "depot_version.h"
+#include "tools/depot/cli_errors.h"
 #include "tools/depot/commands.h"
 
 int main(int argc, char** argv) {
+  // Our errors name file and problem on one line; OpenCV's own warnings
+  // (e.g. about an unreadable image) would come before it as noise.
+  cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_ERROR);
+
   CLI::App app{"depot: visual SLAM in dynamic farm-depot scenes, and the simulator that tests it"};
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Show help for all commands");
+  app.set_version_flag("--version",
+                       std::string("depot ") + DEPOT_VERSION + " (git " + DEPOT_GIT_COMMIT + ")");
+  // Every option's default shows in --help.
+  app.option_defaults()->always_capture_default();
   depot::cli::register_sim_commands(app);
   depot::cli::register_slam_commands(app);
   depot::cli::register_eval_commands(app);
@@ -21,13 +31,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  } catch (const depot::Error& e) {
-    std::fprintf(stderr, "depot: error: %s\n", e.what());
-    return 1;
+    return depot::cli::report_parse_error(app, e);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "depot: error: %s\n", e.what());
-    return 1;
+    return depot::cli::report_failure(e);
   }
   return 0;
 }

@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "common/config_path.h"
 #include "common/error.h"
 
 namespace fs = std::filesystem;
@@ -11,7 +12,7 @@ namespace depot::cli {
 
 std::string scenarios_folder() {
   if (const char* env = std::getenv("DEPOT_SCENARIOS")) return env;
-  return DEPOT_SCENARIO_DIR;
+  return project_file("scenarios");
 }
 
 std::string resolve_scenario(const std::string& arg) {

@@ -4,7 +4,7 @@
 
 namespace depot::cli {
 
-// $DEPOT_SCENARIOS, else the source tree's scenarios/ folder.
+// $DEPOT_SCENARIOS, else the project's scenarios/ folder (common/config_path.h).
 std::string scenarios_folder();
 // A path to a YAML file, or the name of a shipped scenario.
 std::string resolve_scenario(const std::string& name_or_path);

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "common/error.h"
+#include "common/image_size.h"
 #include "sim/dataset/contact_sheet.h"
 #include "sim/pipeline/export_truth.h"
 #include "sim/pipeline/render_dataset.h"
@@ -41,7 +42,8 @@ std::vector<YamlOverride> parse_overrides(const std::vector<std::string>& texts)
 
 void add_set_option(CLI::App* cmd, std::vector<std::string>& settings) {
   cmd->add_option("--set", settings,
-                  "Change a scenario key, e.g. --set sensor.rgb_noise=4 (repeatable)");
+                  "Change a scenario key, e.g. --set sensor.rgb_noise=4 (repeatable)")
+      ->default_str("");
 }
 
 void run_render(const RenderArgs& a, const CLI::App& cmd) {
@@ -102,27 +104,31 @@ void register_sim_commands(CLI::App& app) {
       ->add_option("-o,--output", args->output,
                    "Output dataset folder (appears only when complete)")
       ->required();
-  render->add_option("--frames", args->frames, "Number of frames (default: the scenario's)")
-      ->check(CLI::Range(1, 1000000));
-  render->add_option("--seed", args->seed, "Random seed (default: the scenario's)");
+  render->add_option("--frames", args->frames, "Number of frames")
+      ->check(CLI::Range(1, 1000000))
+      ->default_str("the scenario's");
+  render->add_option("--seed", args->seed, "Random seed")->default_str("the scenario's");
   render
       ->add_option("--load", args->load,
                    "Dynamic load factor: number, size and speed of actors (0..4)")
-      ->check(CLI::Range(0.0, 4.0));
+      ->check(CLI::Range(0.0, 4.0))
+      ->default_str("the scenario's");
   render->add_option("--gl", args->gl, "Off-screen GL backend")
       ->check(CLI::IsMember({"osmesa", "egl"}));
-  render->add_option("--width", args->width, "Image width; height and intrinsics scale with it")
-      ->check(CLI::Range(16, 4096));
+  render
+      ->add_option("--width", args->width,
+                   "Image width (default: the scenario's); height and intrinsics scale with it; "
+                   "each side 32..4096 px")
+      ->check(CLI::Range(kMinImageSide, kMaxImageSide))
+      ->default_str("the scenario's");
   render->add_flag("--ideal", args->ideal, "No sensor model: exact depth and colour");
   render->add_flag("--overwrite", args->overwrite, "Replace an existing output folder");
   render->add_flag("--yolo", args->yolo,
                    "Also export a YOLO training set (yolo/images, yolo/labels, data.yaml)");
   render->add_option("--writers", args->writers, "PNG writer threads")->check(CLI::Range(1, 32));
-  render
-      ->add_option(
-          "--png-level", args->png_level,
-          "zlib level 0-9 for all images (default: colour stored, depth and labels level 1)")
-      ->check(CLI::Range(0, 9));
+  render->add_option("--png-level", args->png_level, "zlib level 0-9 for all images")
+      ->check(CLI::Range(0, 9))
+      ->default_str("colour stored, depth and labels 1");
   render->add_flag("-q,--quiet", args->quiet, "No progress bar");
   add_set_option(render, args->settings);
   render->callback([args, render] { run_render(*args, *render); });
@@ -137,11 +143,13 @@ void register_sim_commands(CLI::App& app) {
       ->required();
   truth->add_option("-o,--output", truth_args->output, "Output folder (appears only when complete)")
       ->required();
-  truth->add_option("--frames", truth_args->frames, "Number of frames (default: the scenario's)")
-      ->check(CLI::Range(1, 1000000));
-  truth->add_option("--seed", truth_args->seed, "Random seed (default: the scenario's)");
+  truth->add_option("--frames", truth_args->frames, "Number of frames")
+      ->check(CLI::Range(1, 1000000))
+      ->default_str("the scenario's");
+  truth->add_option("--seed", truth_args->seed, "Random seed")->default_str("the scenario's");
   truth->add_option("--load", truth_args->load, "Dynamic load factor (0..4)")
-      ->check(CLI::Range(0.0, 4.0));
+      ->check(CLI::Range(0.0, 4.0))
+      ->default_str("the scenario's");
   truth->add_flag("--overwrite", truth_args->overwrite, "Replace an existing output folder");
   truth->add_flag("-q,--quiet", truth_args->quiet, "No progress bar");
   add_set_option(truth, truth_args->settings);
@@ -169,7 +177,8 @@ void register_sim_commands(CLI::App& app) {
   CLI::App* preview =
       sim->add_subcommand("preview", "Write a contact sheet (RGB | depth | labels) of a dataset");
   preview->add_option("dataset", *preview_dataset, "Dataset folder")->required();
-  preview->add_option("-o,--output", *preview_out, "Output image (PNG)")->required();
+  preview->add_option("-o,--output", *preview_out, "Output image (.png, .jpg or .jpeg)")
+      ->required();
   preview->add_option("--rows", preview_opts->rows, "Frames shown")->check(CLI::Range(1, 50));
   preview->callback([=] {
     sim::write_contact_sheet(*preview_dataset, *preview_out, *preview_opts);

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "common/error.h"
+#include "common/staged_file.h"
 #include "common/tum_io.h"
 #include "tools/depot/commands.h"
 #include "tools/runner/slam_runner.h"
@@ -15,11 +16,27 @@ namespace fs = std::filesystem;
 namespace depot::cli {
 namespace {
 
-void check_output_folder(const std::string& path) {
-  fs::path out(path);
-  std::error_code ec;
-  fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
-  if (!fs::is_directory(parent, ec)) fail(path, "output folder does not exist");
+// Options a mode does not use are refused rather than silently ignored.
+void check_options_used_by_mode(const std::string& mode, const CLI::App& cmd) {
+  const slam::RejectionMode m = slam::parse_rejection_mode(mode);
+  const bool detector = slam::mode_uses_detector(m);
+  const struct {
+    const char* option;
+    bool used;
+  } options[] = {{"--detector", detector},
+                 {"--detector-config", detector},
+                 {"--detections", detector},
+                 {"--detector-seed", detector},
+                 {"--detector-set", detector},
+                 {"--classes", detector},
+                 {"--keypoints", m != slam::RejectionMode::kOrb},
+                 {"--background-margin", m == slam::RejectionMode::kFull},
+                 {"--ego-flow", m == slam::RejectionMode::kFull},
+                 {"--test-static", m == slam::RejectionMode::kFull}};
+  for (const auto& o : options)
+    if (!o.used && cmd.count(o.option))
+      fail(o.option, std::string("has no effect in --mode ") + mode +
+                         " (drop it, or choose a mode that uses it)");
 }
 
 struct RunArgs {
@@ -30,7 +47,11 @@ struct RunArgs {
 };
 
 void run_slam(RunArgs& a, const CLI::App& cmd) {
-  check_output_folder(a.output);
+  check_options_used_by_mode(a.options.mode, cmd);
+  // Every output must be writable before a long run starts, not after it.
+  for (const std::string* path :
+       {&a.output, &a.keyframes, &a.options.stats_csv, &a.options.keypoints_csv})
+    if (!path->empty()) check_output_file(*path);
   if (cmd.count("--frames")) a.options.frames = a.frames;
   if (!a.options.quiet)
     std::fprintf(stderr, "depot slam run: %s, mode %s\n", a.options.dataset.c_str(),
@@ -63,16 +84,19 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
 }  // namespace
 
 void add_rejection_options(CLI::App* cmd, runner::RunOptions& o) {
-  cmd->add_option("--mode", o.mode, "Rejection mode (the paper's ablation)")
+  cmd->add_option("--mode", o.mode,
+                  "Rejection mode (the paper's ablation; orb = plain ORB-SLAM2, no rejection)")
       ->check(CLI::IsMember({"orb", "orb+yolo", "orb+lk", "full"}));
   cmd->add_option(
-      "--detector", o.detector,
-      "Detector: sim (simulated datasets), darknet (Yolo-Fastest), fastestdet, yolov5, file");
+         "--detector", o.detector,
+         "Detector: sim (simulated datasets), darknet (Yolo-Fastest), fastestdet, yolov5, file")
+      ->default_str("sim on simulated datasets, else darknet");
   cmd->add_option("--detector-config", o.detector_config,
-                  "Detector YAML (dnn models, or the simulated detector)");
+                  "Detector YAML (dnn models, or the simulated detector)")
+      ->default_str("scenes/detectors/ of the detector");
   cmd->add_option("--detections", o.detections, "Detections file for --detector file");
-  cmd->add_option("--classes", o.classes,
-                  "A-priori class table YAML (default: scenes/apriori/depot|coco.yaml)");
+  cmd->add_option("--classes", o.classes, "A-priori class table YAML")
+      ->default_str("scenes/apriori/depot.yaml for sim, else coco.yaml");
   cmd->add_option("--detector-seed", o.detector_seed, "Seed of the simulated detector's errors");
   cmd->add_option_function<std::vector<std::string>>(
       "--detector-set",
@@ -81,8 +105,8 @@ void add_rejection_options(CLI::App* cmd, runner::RunOptions& o) {
           o.detector_overrides.push_back(parse_yaml_override(t, "--detector-set"));
       },
       "Change a simulated-detector key, e.g. --detector-set miss_rate=0.2 (repeatable)");
-  cmd->add_option("--settings", o.settings,
-                  "Settings YAML (default: the dataset's calibration.yaml)");
+  cmd->add_option("--settings", o.settings, "Settings YAML")
+      ->default_str("the dataset's calibration.yaml");
   cmd->add_option("--background-margin", o.background_depth_margin,
                   "Our extension of full: boxed points without depth, or this far (m) behind a "
                   "dynamic box's object, are background and go to P (0 = the paper exactly)")
@@ -92,7 +116,12 @@ void add_rejection_options(CLI::App* cmd, runner::RunOptions& o) {
                 "PnP on depth) instead of P's mean flow");
   cmd->add_flag("--test-static", o.test_static_points,
                 "Our extension of full: apply the flow test to P's points too");
-  cmd->add_flag("--sync", o.sync, "Run local mapping in the tracking thread (reproducible)");
+  cmd->add_option_function<std::string>(
+         "--mapping", [&o](const std::string& v) { o.sync = v == "sync"; },
+         "Local mapping: threaded (its own thread, as ORB-SLAM2; faster, not reproducible) or "
+         "sync (in the tracking thread, reproducible)")
+      ->check(CLI::IsMember({"sync", "threaded"}))
+      ->default_str("threaded");
 }
 
 void register_slam_commands(CLI::App& app) {
@@ -108,7 +137,8 @@ void register_slam_commands(CLI::App& app) {
       ->required();
   run->add_option("--keyframes", args->keyframes, "Also write the keyframe trajectory here");
   run->add_option("--frames", args->frames, "Only the first N frames")
-      ->check(CLI::Range(1, 10000000));
+      ->check(CLI::Range(1, 10000000))
+      ->default_str("all");
   run->add_option("--stats", args->options.stats_csv,
                   "Per-frame statistics CSV (|Z| |Q| |Q->P| |P|, flow, times)");
   run->add_option("--keypoints", args->options.keypoints_csv,

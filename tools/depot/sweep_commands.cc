@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "common/error.h"
+#include "common/image_size.h"
 #include "common/interrupt.h"
 #include "tools/depot/commands.h"
 #include "tools/depot/paths.h"
@@ -26,7 +27,8 @@ struct SweepArgs {
   std::vector<std::string> vary, fixed;
   std::vector<std::string> modes = {"orb", "orb+yolo", "orb+lk", "full"};
   int seeds = 3, frames = 300, width = 640, workers = 1;
-  bool threaded_mapping = false, keep_data = false, plan_only = false;
+  std::string mapping = "sync";
+  bool keep_data = false, plan_only = false, quiet = false;
   std::vector<std::string> figures;
   std::string output;
 };
@@ -47,7 +49,7 @@ harness::SweepSpec make_spec(const SweepArgs& a) {
   spec.seeds = a.seeds;
   spec.frames = a.frames;
   spec.width = a.width;
-  spec.sync_mapping = !a.threaded_mapping;
+  spec.sync_mapping = a.mapping == "sync";
   spec.keep_data = a.keep_data;
   harness::validate(spec, "depot sweep run");
   return spec;
@@ -61,17 +63,18 @@ void report(const harness::SweepPlan& plan, const harness::SweepLayout& layout,
               files.runs_expected, files.markdown.c_str());
 }
 
-void execute(const harness::SweepPlan& plan, const harness::SweepLayout& layout, int workers,
-             const std::vector<std::string>& figures) {
+void execute(const harness::SweepPlan& plan, const harness::SweepLayout& layout,
+             const SweepArgs& a) {
   harness::SweepRunOptions options;
   options.program = self_program();
-  options.workers = workers;
+  options.workers = a.workers;
+  options.progress = !a.quiet;
   const harness::SweepRunResult r = harness::run_sweep(plan, layout, options, interrupt_flag());
   if (r.interrupted)
     fail(layout.root,
          "sweep interrupted; finished runs are kept, resume with `depot sweep resume " +
              layout.root + "`");
-  report(plan, layout, figures, true);
+  report(plan, layout, a.figures, true);
   if (r.failed || r.blocked)
     fail(layout.root, std::to_string(r.failed) + " job(s) failed and " + std::to_string(r.blocked) +
                           " could not run (logs in " + layout.root +
@@ -94,28 +97,35 @@ void run_command(const SweepArgs& a) {
     }
     return;
   }
-  execute(plan, layout, a.workers, a.figures);
+  execute(plan, layout, a);
 }
 
 void add_run_options(CLI::App* cmd, SweepArgs& a) {
-  cmd->add_option("scenarios", a.scenarios, "Scenario names or YAML files")->required();
+  cmd->add_option("scenarios", a.scenarios, "Scenario names or YAML files")
+      ->required()
+      ->default_str("");
   cmd->add_option("-o,--output", a.output, "Sweep folder (resumes when it holds this sweep)")
       ->required();
   cmd->add_option("--vary", a.vary,
                   "PARAM=L1,L2,...: load, depth_noise, rgb_noise, miss_rate, latency, "
                   "scenario.KEY, detector.KEY, rejection.KEY (repeatable: the grid is the "
-                  "product)");
-  cmd->add_option("--set", a.fixed, "PARAM=VALUE for every run (same names as --vary)");
+                  "product)")
+      ->default_str("");
+  cmd->add_option("--set", a.fixed, "PARAM=VALUE for every run (same names as --vary)")
+      ->default_str("");
   cmd->add_option("--modes", a.modes, "Modes, comma separated")
       ->delimiter(',')
       ->check(CLI::IsMember({"orb", "orb+yolo", "orb+lk", "full"}));
   cmd->add_option("--seeds", a.seeds, "Seeds per cell (scenario and detector)")
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--frames", a.frames, "Frames per run")->check(CLI::Range(10, 100000));
-  cmd->add_option("--width", a.width, "Image width (height and intrinsics scale)")
-      ->check(CLI::Range(64, 4096));
-  cmd->add_flag("--threaded-mapping", a.threaded_mapping,
-                "Local mapping in its own thread (faster, not reproducible)");
+  cmd->add_option("--width", a.width,
+                  "Image width (height and intrinsics scale); each side 32..4096 px")
+      ->check(CLI::Range(kMinImageSide, kMaxImageSide));
+  cmd->add_option("--mapping", a.mapping,
+                  "Local mapping: sync (in the tracking thread, reproducible) or threaded (its "
+                  "own thread, as ORB-SLAM2; faster, not reproducible)")
+      ->check(CLI::IsMember({"sync", "threaded"}));
   cmd->add_flag("--keep-data", a.keep_data, "Keep rendered datasets after their runs");
   cmd->add_flag("--plan-only", a.plan_only,
                 "Write sweep.json and print one command per job (for a cluster), run nothing");
@@ -124,10 +134,10 @@ void add_run_options(CLI::App* cmd, SweepArgs& a) {
 void add_execution_options(CLI::App* cmd, SweepArgs& a) {
   cmd->add_option("-j,--workers", a.workers, "Jobs run at the same time")
       ->check(CLI::Range(1, 256));
-  cmd->add_option("--figures", a.figures,
-                  "Run ids whose trajectory figures the report shows (default: orb and full at "
-                  "the last level, seed 1)")
-      ->delimiter(',');
+  cmd->add_option("--figures", a.figures, "Run ids whose trajectory figures the report shows")
+      ->delimiter(',')
+      ->default_str("orb and full at the last level, seed 1");
+  cmd->add_flag("-q,--quiet", a.quiet, "No progress lines (the table and report still print)");
 }
 
 }  // namespace
@@ -153,7 +163,7 @@ void register_sweep_commands(CLI::App& app) {
     const harness::SweepLayout layout{resume_args->output};
     const harness::SweepPlan plan = harness::make_sweep_plan(harness::read_spec(layout));
     harness::check_sweep_inputs(plan);  // the scenario files may have changed since
-    execute(plan, layout, resume_args->workers, resume_args->figures);
+    execute(plan, layout, *resume_args);
   });
 
   auto job_folder = std::make_shared<std::string>();
@@ -182,7 +192,8 @@ void register_sweep_commands(CLI::App& app) {
       "report", "Write the tables, plots and HTML report of a (possibly partial) sweep");
   rep->add_option("folder", report_args->output, "Sweep folder")->required();
   rep->add_option("--figures", report_args->figures, "Run ids whose trajectory figures to show")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->default_str("orb and full at the last level, seed 1");
   rep->callback([report_args] {
     const harness::SweepLayout layout{report_args->output};
     report(harness::make_sweep_plan(harness::read_spec(layout)), layout, report_args->figures,

@@ -73,7 +73,8 @@ void stop_children(std::map<pid_t, size_t>& running) {
 }  // namespace
 
 PoolSummary run_process_jobs(const std::vector<ProcessJob>& jobs, int workers,
-                             const JobFinished& on_finished, const std::atomic<bool>& stop) {
+                             const JobFinished& on_finished, const std::atomic<bool>& stop,
+                             const JobStarted& on_started) {
   if (workers < 1) fail("process pool", "needs at least one worker");
   std::vector<JobOutcome> outcome(jobs.size());
   std::map<pid_t, size_t> running;
@@ -112,6 +113,7 @@ PoolSummary run_process_jobs(const std::vector<ProcessJob>& jobs, int workers,
         outcome[i].state = JobState::kRunning;
         running[pid] = i;
         started[pid] = std::chrono::steady_clock::now();
+        if (on_started) on_started(i);
       }
       if (running.empty()) {
         // Anything still pending waits on a blocked need: mark and finish.

@@ -31,9 +31,12 @@ struct PoolSummary {
 };
 
 using JobFinished = std::function<void(size_t index, const JobOutcome& outcome)>;
+using JobStarted = std::function<void(size_t index)>;
 
 // Throws Error when a program cannot be started or a log cannot be opened.
+// `on_started` (optional) is called as each job's process starts.
 PoolSummary run_process_jobs(const std::vector<ProcessJob>& jobs, int workers,
-                             const JobFinished& on_finished, const std::atomic<bool>& stop);
+                             const JobFinished& on_finished, const std::atomic<bool>& stop,
+                             const JobStarted& on_started = nullptr);
 
 }  // namespace depot::harness

@@ -53,7 +53,7 @@ void add_pair(const SweepPlan& plan, const SweepSummary& s, const std::vector<si
   eval::SeriesPlot rejection = ate;
   rejection.title =
       "Rejection precision / recall vs " + x_label + (group.empty() ? "" : " (" + group + ")");
-  rejection.y_label = "precision (solid), recall (dashed)";
+  rejection.y_label = "precision (solid, circles), recall (dashed, squares)";
   rejection.log_y = false;
   rejection.y_lo = 0.0;
   rejection.y_hi = 1.0;
@@ -62,7 +62,7 @@ void add_pair(const SweepPlan& plan, const SweepSummary& s, const std::vector<si
     const std::string colour = eval::series_colour(mode_colour_index(mode));
     eval::PlotSeries a{mode, colour, "", {}, {}};
     eval::PlotSeries p{mode + " precision", colour, "", {}, {}};
-    eval::PlotSeries r{mode + " recall", colour, "6 4", {}, {}};
+    eval::PlotSeries r{mode + " recall", colour, "6 4", {}, {}, eval::PlotMarker::kSquare};
     for (size_t c : cells) {
       const CellModeSummary& e = *s.find(c, mode);
       a.mean.push_back(e.ate_rmse.mean);

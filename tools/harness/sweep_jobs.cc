@@ -32,8 +32,15 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 void check_sweep_inputs(const SweepPlan& plan) {
   for (const auto& cell : plan.cells) {
-    sim::load_scenario(plan.spec.scenarios[cell.scenario].path,
-                       cell_overrides(plan, cell, ParameterTarget::kScenario));
+    try {
+      sim::Scenario scenario =
+          sim::load_scenario(plan.spec.scenarios[cell.scenario].path,
+                             cell_overrides(plan, cell, ParameterTarget::kScenario));
+      sim::scale_camera(scenario.camera, plan.spec.width);  // the rendered size must be usable
+    } catch (const Error& e) {
+      // Name the sweep's levels too: an override's error points into the file.
+      fail("sweep cell " + cell.label, e.what());
+    }
     slam::load_sim_detector_config(
         overrides_to_node(cell_overrides(plan, cell, ParameterTarget::kDetector), "detector"),
         cell.label + " (detector settings)");
@@ -130,7 +137,9 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
   r.moving_share = read_dataset_record(layout.dataset_record(job.dataset_id)).moving_share_mean;
 
   fs::create_directories(fs::path(layout.run_dir(job.id)).parent_path());
-  StagedDirectory out(layout.run_dir(job.id), /*overwrite=*/true);
+  static const OutputKind kRunFolder{
+      "sweep run", "result.json", {"result.json", "trajectory.txt", "stats.csv", "ate.svg"}};
+  StagedDirectory out(layout.run_dir(job.id), kRunFolder, /*overwrite=*/true);
   runner::RunOptions options;
   options.dataset = dataset;
   options.mode = job.mode;

@@ -195,6 +195,11 @@ void write_or_check_spec(const SweepLayout& layout, const SweepSpec& spec) {
                               "` or choose another folder");
     fail(layout.root, "holds a different sweep");
   }
+  std::error_code ec;
+  if (fs::exists(layout.root, ec) &&
+      (!fs::is_directory(layout.root, ec) || !fs::is_empty(layout.root, ec)))
+    fail(layout.root,
+         "is not a sweep folder (no sweep.json) and is not empty; choose a new or empty folder");
   fs::create_directories(layout.root);
   write_text_file_atomic(layout.spec_file(), wanted.dump(2) + "\n");
 }

@@ -176,7 +176,16 @@ SweepRunResult run_sweep(const SweepPlan& plan, const SweepLayout& layout,
                    processes.size(), line.c_str(), elapsed, eta);
     }
   };
-  const PoolSummary pool = run_process_jobs(processes, options.workers, on_finished, stop);
+  // A line as each job starts, so a long first job does not look like a hang.
+  auto on_started = [&](size_t p) {
+    if (!options.progress) return;
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(stderr, "sweep: [%zu/%zu] started %s  (%.0f s elapsed)\n", done, processes.size(),
+                 plan.jobs[plan_index[p]].id.c_str(), elapsed);
+  };
+  const PoolSummary pool =
+      run_process_jobs(processes, options.workers, on_finished, stop, on_started);
   result.succeeded = pool.succeeded;
   result.failed = pool.failed;
   result.blocked = pool.blocked;

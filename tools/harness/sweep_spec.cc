@@ -1,10 +1,13 @@
 #include "tools/harness/sweep_spec.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <set>
 #include <utility>
 
 #include "common/error.h"
+#include "common/image_size.h"
 
 namespace depot::harness {
 namespace {
@@ -23,6 +26,12 @@ std::vector<SweepParameter> parameters_from_json(const nlohmann::json& j) {
     out.push_back(
         {p.at("name").get<std::string>(), p.at("values").get<std::vector<std::string>>()});
   return out;
+}
+
+// The named parameters whose levels are plain numbers.
+bool is_numeric_alias(const std::string& name) {
+  return name == "load" || name == "depth_noise" || name == "rgb_noise" || name == "miss_rate" ||
+         name == "latency";
 }
 
 }  // namespace
@@ -61,6 +70,12 @@ SweepParameter parse_sweep_parameter(const std::string& text, const std::string&
     v.erase(0, v.find_first_not_of(' '));
     v.erase(v.find_last_not_of(' ') + 1);
     if (v.empty()) fail(where, "empty level in '" + text + "'");
+    if (is_numeric_alias(p.name)) {
+      char* end = nullptr;
+      const double number = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || !std::isfinite(number))
+        fail(where + " " + p.name, "level '" + v + "' is not a number");
+    }
     p.values.push_back(v);
     if (comma == std::string::npos) break;
     start = comma + 1;
@@ -102,7 +117,9 @@ void validate(const SweepSpec& spec, const std::string& where) {
     if (p.values.size() != 1) fail(where, "fixed setting '" + p.name + "' needs one value");
   if (spec.seeds < 1 || spec.seeds > 1000) fail(where, "seeds must be in 1..1000");
   if (spec.frames < 10) fail(where, "frames must be at least 10");
-  if (spec.width < 64 || spec.width > 4096) fail(where, "width must be in 64..4096");
+  if (spec.width < kMinImageSide || spec.width > kMaxImageSide)
+    fail(where, "width must be in " + std::to_string(kMinImageSide) + ".." +
+                    std::to_string(kMaxImageSide));
 }
 
 nlohmann::json to_json(const SweepSpec& spec) {

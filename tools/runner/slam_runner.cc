@@ -7,6 +7,7 @@
 #include <fstream>
 #include <memory>
 
+#include "common/config_path.h"
 #include "common/error.h"
 #include "common/interrupt.h"
 #include "common/percentile.h"
@@ -25,10 +26,6 @@ namespace fs = std::filesystem;
 
 namespace depot::runner {
 namespace {
-
-std::string shipped(const std::string& relative) {
-  return std::string(DEPOT_SOURCE_DIR) + "/" + relative;
-}
 
 std::unique_ptr<slam::Detector> make_detector(const RunOptions& o, const std::string& type) {
   if (type == "sim") {
@@ -53,11 +50,15 @@ std::unique_ptr<slam::Detector> make_detector(const RunOptions& o, const std::st
          "unknown detector '" + type + "' (expected sim, file, yolov5, darknet, fastestdet)");
   std::string config = o.detector_config;
   if (config.empty()) {
-    config = type == "darknet"      ? shipped("scenes/detectors/yolo_fastest.yaml")
-             : type == "fastestdet" ? shipped("scenes/detectors/fastestdet.yaml")
-                                    : shipped("scenes/detectors/yolov5s.yaml");
+    config = type == "darknet"      ? project_file("scenes/detectors/yolo_fastest.yaml")
+             : type == "fastestdet" ? project_file("scenes/detectors/fastestdet.yaml")
+                                    : project_file("scenes/detectors/yolov5s.yaml");
   }
-  return slam::make_dnn_detector(slam::load_detector_config(config));
+  const slam::DetectorConfig loaded = slam::load_detector_config(config);
+  if (loaded.type != type)
+    fail(config,
+         "configures a '" + loaded.type + "' detector, but --detector " + type + " was asked for");
+  return slam::make_dnn_detector(loaded);
 }
 
 const char* const kKeypointHeader =
@@ -88,6 +89,20 @@ void write_keypoint_rows(std::ostream& out, size_t frame, double timestamp,
       out << ',';
     out << '\n';
   }
+}
+
+// The images must have the camera's size: say which file, which sizes, and
+// where the camera came from, before any work.
+void check_image_size(const slam::TumSequence& sequence, const slam::SlamSettings& settings,
+                      const std::string& settings_source) {
+  cv::Mat bgr, depth;
+  sequence.load(0, bgr, depth);
+  const int w = settings.camera.width, h = settings.camera.height;
+  if (bgr.cols == w && bgr.rows == h) return;
+  fail((fs::path(sequence.folder()) / sequence.entry(0).rgb_path).string(),
+       "image is " + std::to_string(bgr.cols) + "x" + std::to_string(bgr.rows) +
+           " but the camera of " + settings_source + " is " + std::to_string(w) + "x" +
+           std::to_string(h) + " (give --settings with the dataset's intrinsics)");
 }
 
 }  // namespace
@@ -124,7 +139,7 @@ RejectionSetup make_rejection(const RunOptions& o) {
   const std::string table_path =
       !o.classes.empty()
           ? o.classes
-          : shipped(type == "sim" ? "scenes/apriori/depot.yaml" : "scenes/apriori/coco.yaml");
+          : project_file(type == "sim" ? "scenes/apriori/depot.yaml" : "scenes/apriori/coco.yaml");
   slam::AprioriClasses classes = slam::AprioriClasses::load(table_path);
   if (setup.detector && !setup.detector->class_names().empty())
     classes.check_against(setup.detector->class_names(), table_path, setup.detector->name());
@@ -141,7 +156,7 @@ RunSummary run_sequence(const RunOptions& o) {
   RunSummary summary;
   slam::TumSequence sequence(o.dataset);
   slam::SlamSettings settings;
-  summary.settings_source = "defaults (TUM fr3 Kinect)";
+  summary.settings_source = "the TUM fr3 Kinect defaults (no calibration.yaml)";
   if (!sequence.calibration_path().empty()) {
     settings = slam::load_settings(sequence.calibration_path(), settings);
     summary.settings_source = sequence.calibration_path();
@@ -152,7 +167,17 @@ RunSummary run_sequence(const RunOptions& o) {
   }
   if (o.sync) settings.threaded_mapping = false;
   sequence.set_depth_factor(settings.camera.depth_factor);
-  const size_t n = o.frames ? std::min(*o.frames, sequence.size()) : sequence.size();
+  if (o.frames && *o.frames > sequence.size())
+    fail(o.dataset, "has " + std::to_string(sequence.size()) + " frames; --frames asks for " +
+                        std::to_string(*o.frames));
+  const size_t n = o.frames ? *o.frames : sequence.size();
+  check_image_size(sequence, settings, summary.settings_source);
+  if (sequence.calibration_path().empty() && o.settings.empty())
+    std::fprintf(stderr,
+                 "depot: warning: %s: no calibration.yaml; using the TUM fr3 Kinect intrinsics "
+                 "(%dx%d, fx %.1f fy %.1f cx %.1f cy %.1f; give --settings to choose others)\n",
+                 o.dataset.c_str(), settings.camera.width, settings.camera.height,
+                 settings.camera.fx, settings.camera.fy, settings.camera.cx, settings.camera.cy);
 
   // Rejection: mode, detector and class table, all checked before any work.
   const bool simulated = eval::MotionTruth::available(o.dataset);

@@ -1,0 +1,16 @@
+#pragma once
+// Staged outputs are named "<prefix><pid>" (e.g. "OUT.partial-1234"). A
+// process killed with SIGKILL cannot remove its own; the next run to the same
+// output removes those whose process is gone.
+#include <string>
+
+namespace depot {
+
+// True when a process with this id exists (including one of another user).
+bool process_is_alive(long pid);
+
+// Removes the entries "<prefix><pid>" of `folder` whose process is gone;
+// returns how many were removed. Entries of live processes stay.
+int remove_stale_partials(const std::string& folder, const std::string& prefix);
+
+}  // namespace depot

@@ -1,0 +1,29 @@
+#pragma once
+// The one error format of the program: "depot: error: <where>: <problem>" on
+// one line of stderr, with a non-zero exit. Command-line parsing errors
+// (CLI11), project errors and filesystem errors all pass through here.
+#include <exception>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace depot::cli {
+
+inline constexpr int kExitError = 1;  // the work failed (bad input file, ...)
+inline constexpr int kExitUsage = 2;  // the command line was wrong
+inline constexpr int kExitInterrupt = 130;
+
+// The subcommand path that was being parsed, e.g. "sim render".
+std::string command_path(const CLI::App& app);
+
+// Prints the error line for a command-line error and returns the exit code
+// (0 for --help and --version, which print their text instead).
+int report_parse_error(CLI::App& app, const CLI::ParseError& e);
+
+// Prints the error line for a failure while running a command.
+int report_failure(const std::exception& e);
+
+// Collapses a message to one line (newlines become "; ").
+std::string one_line(const std::string& text);
+
+}  // namespace depot::cli
