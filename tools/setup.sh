@@ -15,7 +15,24 @@ cmake --build build -j"$(nproc)" --target depot
 depot=./build/tools/depot/depot
 scenario="${1:-depot_walking_xyz}"
 out="out/${scenario}"
-rm -rf "$out"
+# A previous main job's folder is replaced; anything else is left alone.
+if [ -e "$out" ]; then
+  if [ ! -f "$out/sweep.json" ]; then
+    echo "setup: error: $out exists and is not a sweep folder; move it away first" >&2
+    exit 1
+  fi
+  for entry in "$out"/* "$out"/.[!.]*; do
+    [ -e "$entry" ] || continue
+    case "$(basename "$entry")" in
+      sweep.json | data | runs | logs | report | preview.png | .*.partial-*) ;;
+      *)
+        echo "setup: error: $out holds $(basename "$entry"), which the main job did not write; move it away first" >&2
+        exit 1
+        ;;
+    esac
+  done
+  rm -rf "$out"
+fi
 echo "== ${scenario}: render 300 frames (640x480, Kinect-like sensor), then SLAM in modes orb, orb+yolo, orb+lk, full"
 "$depot" sweep run "$scenario" -o "$out" --seeds 1 --frames 300 --keep-data -j "$(nproc)"
 dataset="${out}/data/${scenario}__s1"
