@@ -30,6 +30,8 @@ std::string shipped(const std::string& relative) {
   return std::string(DEPOT_SOURCE_DIR) + "/" + relative;
 }
 
+}  // namespace
+
 std::unique_ptr<slam::Detector> make_detector(const RunOptions& o, const std::string& type) {
   if (type == "sim") {
     slam::SimDetectorConfig config;
@@ -48,17 +50,20 @@ std::unique_ptr<slam::Detector> make_detector(const RunOptions& o, const std::st
     fail("--detector-set",
          "applies to the simulated detector only (edit the " + type + " detector's YAML instead)");
   const auto& dnn = slam::dnn_detector_types();
-  if (std::find(dnn.begin(), dnn.end(), type) == dnn.end())
+  if (type != "xl" && std::find(dnn.begin(), dnn.end(), type) == dnn.end())
     fail("--detector",
-         "unknown detector '" + type + "' (expected sim, file, yolov5, darknet, fastestdet)");
+         "unknown detector '" + type + "' (expected sim, file, darknet, xl, fastestdet, yolov5)");
   std::string config = o.detector_config;
   if (config.empty()) {
     config = type == "darknet"      ? shipped("scenes/detectors/yolo_fastest.yaml")
+             : type == "xl"         ? shipped("scenes/detectors/yolo_fastest_xl.yaml")
              : type == "fastestdet" ? shipped("scenes/detectors/fastestdet.yaml")
                                     : shipped("scenes/detectors/yolov5s.yaml");
   }
   return slam::make_dnn_detector(slam::load_detector_config(config));
 }
+
+namespace {
 
 const char* const kKeypointHeader =
     "frame,timestamp,x,y,octave,set,kept,depth_m,on_moving,near_moving\n";
