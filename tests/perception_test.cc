@@ -102,9 +102,10 @@ TEST(Perception, SegmenterOnARenderedDataset) {
   ASSERT_EQ(r.code, 0) << r.output;
   const nlohmann::json d = read_json(json)["dataset"];
   EXPECT_EQ(d["frames"].size(), 6u);
-  const double iou = d["mean_iou"].get<double>();
-  EXPECT_GE(iou, 0.0);
-  EXPECT_LE(iou, 1.0);
+  // Measured 0.59 on these frames (0.54 over 300 frames at 640 px): the
+  // selfie model masks some primitive people well and others poorly.
+  EXPECT_GT(d["mean_iou"].get<double>(), 0.3);
+  EXPECT_LE(d["mean_iou"].get<double>(), 1.0);
 }
 
 // One error line naming the file, a non-zero exit, no output written.
