@@ -87,41 +87,41 @@ PersonSegmenter::PersonSegmenter(const SegmenterConfig& config)
   probability(grey);
 }
 
-cv::Mat PersonSegmenter::probability(const cv::Mat& bgr) {
+const cv::Mat& PersonSegmenter::probability(const cv::Mat& bgr) {
   require_bgr(bgr, name());
   const cv::Size input(config_.input_width, config_.input_height);
-  cv::Mat sized;
   cv::Rect valid(0, 0, input.width, input.height);  // the image's part of the input
   if (config_.letterbox) {
     const Letterboxed lb = letterbox(bgr, input, 0.0);
-    sized = lb.image;
+    lb.image.copyTo(sized_);
     const LetterboxTransform& t = lb.transform;
     valid = cv::Rect(static_cast<int>(t.pad_x), static_cast<int>(t.pad_y),
                      static_cast<int>(std::lround(t.source.width * t.scale)),
                      static_cast<int>(std::lround(t.source.height * t.scale)));
   } else {
-    cv::resize(bgr, sized, input, 0, 0, cv::INTER_AREA);
+    cv::resize(bgr, sized_, input, 0, 0, cv::INTER_AREA);
   }
-  if (config_.rgb) cv::cvtColor(sized, sized, cv::COLOR_BGR2RGB);
+  if (config_.rgb) cv::cvtColor(sized_, sized_, cv::COLOR_BGR2RGB);
   const double scale = (config_.input_hi - config_.input_lo) / 255.0;
-  cv::Mat blob;
   if (config_.nhwc) {
-    cv::Mat f;
-    sized.convertTo(f, CV_32F, scale, config_.input_lo);
+    // The NHWC blob is the HxW 3-channel float image itself.
     const int shape[] = {1, input.height, input.width, 3};
-    blob = cv::Mat(4, shape, CV_32F, f.data).clone();
+    blob_.create(4, shape, CV_32F);
+    cv::Mat pixels(input.height, input.width, CV_32FC3, blob_.ptr<float>());
+    sized_.convertTo(pixels, CV_32F, scale, config_.input_lo);
   } else {
-    blob = cv::dnn::blobFromImage(sized, scale, cv::Size(), cv::Scalar(), false, false);
-    if (config_.input_lo != 0.0f) blob += config_.input_lo;
+    cv::dnn::blobFromImage(sized_, blob_, scale, cv::Size(), cv::Scalar(), false, false);
+    if (config_.input_lo != 0.0f) blob_ += config_.input_lo;
   }
-  const std::vector<cv::Mat> outs = run_net(net_, blob, config_.model);
-  cv::Mat map = output_map(outs.front(), config_.model).clone();
+  const std::vector<cv::Mat> outs = run_net(net_, blob_, config_.model);
+  cv::Mat map = output_map(outs.front(), config_.model);
   require_finite(map, config_.model);
   if (config_.logit) {
     cv::exp(-map, map);
     map = 1.0 / (1.0 + map);
   }
-  // The valid region in the output's resolution, then the image's size.
+  // The valid region in the output's resolution, clamped there (cheap:
+  // bilinear resizing keeps values in [0, 1]), then the image's size.
   const double sx = static_cast<double>(map.cols) / input.width;
   const double sy = static_cast<double>(map.rows) / input.height;
   const cv::Rect region =
@@ -129,14 +129,14 @@ cv::Mat PersonSegmenter::probability(const cv::Mat& bgr) {
                cv::Point(static_cast<int>(std::ceil(valid.br().x * sx)),
                          static_cast<int>(std::ceil(valid.br().y * sy)))) &
       cv::Rect(0, 0, map.cols, map.rows);
-  cv::Mat out;
-  cv::resize(map(region), out, bgr.size(), 0, 0, cv::INTER_LINEAR);
-  cv::min(cv::max(out, 0.0), 1.0, out);
-  return out;
+  cv::min(cv::max(map(region), 0.0), 1.0, clamped_);
+  cv::resize(clamped_, probability_, bgr.size(), 0, 0, cv::INTER_LINEAR);
+  return probability_;
 }
 
-cv::Mat PersonSegmenter::mask(const cv::Mat& bgr) {
-  return probability(bgr) >= config_.threshold;
+const cv::Mat& PersonSegmenter::mask(const cv::Mat& bgr) {
+  cv::compare(probability(bgr), config_.threshold, mask_, cv::CMP_GE);
+  return mask_;
 }
 
 std::string PersonSegmenter::name() const {

@@ -48,10 +48,13 @@ class PersonSegmenter {
   explicit PersonSegmenter(const SegmenterConfig& config);
 
   // Person probability per pixel: CV_32F in [0, 1], the size of `bgr`
-  // (CV_8UC3).
-  cv::Mat probability(const cv::Mat& bgr);
-  // probability(bgr) >= threshold: CV_8U, 255 = person.
-  cv::Mat mask(const cv::Mat& bgr);
+  // (CV_8UC3). The buffers are the segmenter's own, reused from frame to
+  // frame (fresh ones cost several ms of page faults per frame here): the
+  // result is overwritten by the next call; clone() it to keep it.
+  const cv::Mat& probability(const cv::Mat& bgr);
+  // probability(bgr) >= threshold: CV_8U, 255 = person; overwritten by the
+  // next call like probability().
+  const cv::Mat& mask(const cv::Mat& bgr);
 
   // "segmenter (<model file>)".
   std::string name() const;
@@ -60,6 +63,7 @@ class PersonSegmenter {
  private:
   SegmenterConfig config_;
   cv::dnn::Net net_;
+  cv::Mat sized_, blob_, clamped_, probability_, mask_;  // per-frame buffers
 };
 
 }  // namespace depot::slam
