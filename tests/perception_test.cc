@@ -146,6 +146,8 @@ TEST(Perception, BadInputIsOneErrorLine) {
   expect_error("eval detector --images " + kLabels + " --detector sim",
                "--detector sim: needs a simulated DATASET");
   expect_error("eval detector", "depot eval: give a DATASET, --images LABELS.yaml, or both");
+  const std::string real = std::string(DEPOT_SHARED_DATA) + "/tum/" + kTumFrame;
+  expect_error("eval detector " + real, real + ": no ground-truth boxes (boxes.txt)");
 }
 
 }  // namespace

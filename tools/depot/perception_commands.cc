@@ -68,7 +68,12 @@ void run_detector_eval(DetectorArgs& a) {
   std::optional<StagedFile> json;
   if (!a.json.empty()) json.emplace(a.json);
   std::optional<StagedDirectory> report;
-  if (!a.report.empty()) report.emplace(a.report, false);
+  if (!a.report.empty()) {
+    std::error_code ec;
+    if (fs::exists(a.report, ec) && !(fs::is_directory(a.report, ec) && fs::is_empty(a.report, ec)))
+      fail(a.report, "exists and is not empty (the report goes to a new or empty folder)");
+    report.emplace(a.report, false);
+  }
 
   std::vector<runner::DetectorEval> evals;
   std::vector<std::string> names;
@@ -98,8 +103,7 @@ void run_detector_eval(DetectorArgs& a) {
     std::printf("wrote %s\n", a.json.c_str());
   }
   if (report) {
-    eval::write_detection_report(report->path(),
-                                 "Detector " + type + " (" + sides.front().detector + ")", sides);
+    eval::write_detection_report(report->path(), "Detector " + sides.front().detector, sides);
     report->commit();
     std::printf("wrote %s/report.html\n", a.report.c_str());
   }

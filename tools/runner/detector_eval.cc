@@ -45,6 +45,10 @@ eval::ClassMapping class_mapping_for(const std::string& type, const std::string&
 DetectorEval evaluate_on_dataset(slam::Detector& detector, const std::string& dataset,
                                  const eval::ClassMapping& mapping, size_t every, bool reads_pixels,
                                  bool quiet) {
+  if (!std::filesystem::exists(std::filesystem::path(dataset) / "boxes.txt"))
+    fail(dataset,
+         "no ground-truth boxes (boxes.txt): not a simulated dataset (score real images "
+         "with --images)");
   const slam::DatasetBoxes truth = slam::read_dataset_boxes(dataset);
   mapping.check_classes(truth.classes, dataset + "/classes.txt");
   DetectorEval eval{
