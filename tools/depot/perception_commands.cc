@@ -103,7 +103,8 @@ void run_detector_eval(DetectorArgs& a) {
     std::printf("wrote %s\n", a.json.c_str());
   }
   if (report) {
-    eval::write_detection_report(report->path(), "Detector " + sides.front().detector, sides);
+    eval::write_detection_report(report->path(), "Detector " + type + ": " + sides.front().detector,
+                                 sides);
     report->commit();
     std::printf("wrote %s/report.html\n", a.report.c_str());
   }
