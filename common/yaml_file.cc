@@ -1,5 +1,7 @@
 #include "common/yaml_file.h"
 
+#include <algorithm>
+
 #include "common/error.h"
 
 namespace depot {
@@ -11,6 +13,21 @@ YAML::Node load_yaml_file(const std::string& path, const std::string& what) {
     fail(path, "cannot open " + what);
   } catch (const YAML::Exception& e) {
     fail(path + ":" + std::to_string(e.mark.line + 1), "YAML syntax error: " + e.msg);
+  }
+}
+
+std::string yaml_where(const std::string& path, const YAML::Node& node) {
+  return path + ":" + std::to_string(node.Mark().line + 1);
+}
+
+void check_known_keys(const YAML::Node& node, const std::vector<std::string>& known,
+                      const std::string& path) {
+  for (const auto& kv : node) {
+    const std::string key = kv.first.Scalar();
+    if (std::find(known.begin(), known.end(), key) != known.end()) continue;
+    std::string list;
+    for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+    fail(yaml_where(path, kv.first), "unknown key '" + key + "' (expected " + list + ")");
   }
 }
 

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <string>
+#include <vector>
 
 namespace depot {
 
@@ -10,5 +11,13 @@ namespace depot {
 // when the file cannot be read and
 // Error("<path>:<line>: YAML syntax error: <msg>") when it does not parse.
 YAML::Node load_yaml_file(const std::string& path, const std::string& what);
+
+// "<path>:<line>" of a node of the file at `path`, for error messages.
+std::string yaml_where(const std::string& path, const YAML::Node& node);
+
+// Throws Error("<path>:<line>: unknown key 'k' (expected a, b, c)") for the
+// first key of the map `node` that is not in `known`.
+void check_known_keys(const YAML::Node& node, const std::vector<std::string>& known,
+                      const std::string& path);
 
 }  // namespace depot

@@ -60,6 +60,10 @@ cv::Mat MotionTruth::load_labels(const std::string& key) const {
   return labels;
 }
 
+cv::Mat MotionTruth::label_image(double timestamp) const {
+  return load_labels(stamp_key(timestamp));
+}
+
 std::vector<double> MotionTruth::timestamps() const {
   std::vector<double> stamps;
   for (const auto& [key, file] : label_files_) stamps.push_back(std::stod(key));

@@ -39,6 +39,10 @@ class MotionTruth {
   // The rgb timestamps that have a label image, in increasing order.
   std::vector<double> timestamps() const;
 
+  // The label image (CV_16U instance ids) of the frame with this rgb
+  // timestamp. Throws depot::Error when it has none or it is unreadable.
+  cv::Mat label_image(double timestamp) const;
+
  private:
   cv::Mat load_labels(const std::string& key) const;
 

@@ -2,7 +2,9 @@
 // detector on the real TUM fr3/walking_xyz frame (median of N runs after one
 // warm-up), and each as a ratio to baselines measured in the same run: the
 // input preprocessing alone (cv::resize + blobFromImage at 320x320) and
-// Yolo-Fastest 1.1 itself.
+// Yolo-Fastest 1.1 itself. Also the person segmenter
+// (scenes/segmenters/selfie.yaml) with its pre- and post-processing at the
+// frame's size.
 //
 //   depot_detector_bench [--runs N] [extra_detector.yaml ...]
 //
@@ -25,6 +27,7 @@
 #include "common/error.h"
 #include "slam/detect/detector_config.h"
 #include "slam/detect/detector_factory.h"
+#include "slam/detect/person_segmenter.h"
 
 namespace {
 
@@ -57,6 +60,7 @@ int main(int argc, char** argv) {
   int runs = 30;
   std::vector<std::string> yamls{
       std::string(DEPOT_SOURCE_DIR) + "/scenes/detectors/yolo_fastest.yaml",
+      std::string(DEPOT_SOURCE_DIR) + "/scenes/detectors/yolo_fastest_xl.yaml",
       std::string(DEPOT_SOURCE_DIR) + "/scenes/detectors/fastestdet.yaml"};
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -112,11 +116,24 @@ int main(int argc, char** argv) {
     }
   }
 
+  try {
+    depot::slam::PersonSegmenter segmenter(depot::slam::load_segmenter_config(
+        std::string(DEPOT_SOURCE_DIR) + "/scenes/segmenters/selfie.yaml"));
+    double share = 0.0;
+    const double ms = median_ms(
+        runs, [&] { share = cv::countNonZero(segmenter.mask(frame)) / double(frame.total()); });
+    rows.push_back({"selfie segmentation (mask)", ms,
+                    cv::format("person mask %.0f %% of the frame", 100 * share), false});
+  } catch (const depot::Error& e) {
+    std::fprintf(stderr, "skipping the segmenter: %s\n", e.what());
+    status = 1;
+  }
+
   double yolo_fastest_ms = 0.0;
   for (const Row& r : rows)
     if (r.baseline) yolo_fastest_ms = r.ms;
-  std::printf("%-28s %9s %10s %14s  %s\n", "detector", "ms/frame", "x preproc", "x yolo_fastest",
-              "persons found");
+  std::printf("%-28s %9s %10s %14s  %s\n", "detector / segmenter", "ms/frame", "x preproc",
+              "x yolo_fastest", "persons found");
   std::printf("%-28s %9.2f %10.2f %14s  %s\n", "preprocess (resize+blob 320)", prep_ms, 1.0, "-",
               "-");
   for (const Row& r : rows)

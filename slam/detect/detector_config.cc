@@ -3,51 +3,13 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
-#include <cmath>
 
 #include "common/config_path.h"
 #include "common/error.h"
 #include "common/yaml_file.h"
+#include "slam/detect/config_fields.h"
 
 namespace depot::slam {
-namespace {
-
-std::string where(const std::string& path, const YAML::Node& n) {
-  return path + ":" + std::to_string(n.Mark().line + 1);
-}
-
-std::string folder_of(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  if (slash == std::string::npos) return ".";
-  return slash == 0 ? "/" : path.substr(0, slash);
-}
-
-std::string read_string(const YAML::Node& root, const char* key, const std::string& path) {
-  const YAML::Node n = root[key];
-  if (!n) return {};
-  if (!n.IsScalar()) fail(where(path, n), std::string("'") + key + "' must be a string");
-  return n.as<std::string>();
-}
-
-template <typename T>
-T read_number(const YAML::Node& root, const char* key, T fallback, double lo, double hi,
-              const std::string& path) {
-  const YAML::Node n = root[key];
-  if (!n) return fallback;
-  T v;
-  try {
-    v = n.as<T>();
-  } catch (const YAML::Exception&) {
-    fail(where(path, n), std::string("bad value for '") + key + "'");
-  }
-  const double d = static_cast<double>(v);
-  if (!std::isfinite(d) || d < lo || d > hi)
-    fail(where(path, n), std::string("'") + key + "' must be in [" + std::to_string(lo) + ", " +
-                             std::to_string(hi) + "]");
-  return v;
-}
-
-}  // namespace
 
 const std::vector<std::string>& dnn_detector_types() {
   static const std::vector<std::string> types{"yolov5", "darknet", "fastestdet"};
@@ -61,18 +23,14 @@ DetectorConfig load_detector_config(const std::string& yaml_path) {
   static const std::vector<std::string> known{"type",       "model",       "config",
                                               "names",      "input_width", "input_height",
                                               "confidence", "nms",         "classes"};
-  for (const auto& kv : root) {
-    const std::string key = kv.first.as<std::string>();
-    if (std::find(known.begin(), known.end(), key) == known.end())
-      fail(where(yaml_path, kv.first), "unknown key '" + key + "'");
-  }
+  check_known_keys(root, known, yaml_path);
 
   DetectorConfig c;
   c.type = read_string(root, "type", yaml_path);
   const auto& types = dnn_detector_types();
   if (c.type.empty()) fail(yaml_path, "missing 'type' (yolov5, darknet or fastestdet)");
   if (std::find(types.begin(), types.end(), c.type) == types.end())
-    fail(where(yaml_path, root["type"]),
+    fail(yaml_where(yaml_path, root["type"]),
          "unknown detector type '" + c.type + "' (expected yolov5, darknet or fastestdet)");
 
   const std::string folder = folder_of(yaml_path);
@@ -84,7 +42,7 @@ DetectorConfig load_detector_config(const std::string& yaml_path) {
   if (c.type == "darknet" && c.config.empty())
     fail(yaml_path, "missing 'config' (path of the Darknet .cfg file)");
   if (c.type != "darknet" && !c.config.empty())
-    fail(where(yaml_path, root["config"]), "'config' is for type darknet only");
+    fail(yaml_where(yaml_path, root["config"]), "'config' is for type darknet only");
 
   c.input_width = read_number<int>(root, "input_width", 0, 0, 4096, yaml_path);
   c.input_height = read_number<int>(root, "input_height", 0, 0, 4096, yaml_path);
@@ -95,10 +53,10 @@ DetectorConfig load_detector_config(const std::string& yaml_path) {
 
   if (const YAML::Node cls = root["classes"]) {
     if (!cls.IsSequence() && !cls.IsNull())
-      fail(where(yaml_path, cls), "'classes' must be a list of class names");
+      fail(yaml_where(yaml_path, cls), "'classes' must be a list of class names");
     for (const YAML::Node& n : cls) {
       if (!n.IsScalar() || n.as<std::string>().empty())
-        fail(where(yaml_path, n), "'classes' entries must be class names");
+        fail(yaml_where(yaml_path, n), "'classes' entries must be class names");
       c.classes.push_back(n.as<std::string>());
     }
   }

@@ -30,24 +30,9 @@
 
 #include "slam/detect/detection.h"
 #include "slam/detect/sim_detector_config.h"
+#include "slam/detect/truth_boxes.h"
 
 namespace depot::slam {
-
-// One line of a dataset's boxes.txt.
-struct TruthBox {
-  int id = 0;  // instance id (objects.json, labels/)
-  std::string class_name;
-  int class_id = -1;                   // index in classes.txt
-  int x1 = 0, y1 = 0, x2 = 0, y2 = 0;  // pixels, x2/y2 exclusive
-  int visible_pixels = 0;
-  bool moving = false;
-
-  int area() const { return (x2 - x1) * (y2 - y1); }
-  cv::Rect2f rect() const {
-    return cv::Rect2f(static_cast<float>(x1), static_cast<float>(y1), static_cast<float>(x2 - x1),
-                      static_cast<float>(y2 - y1));
-  }
-};
 
 class SimDetector : public Detector {
  public:
@@ -70,14 +55,14 @@ class SimDetector : public Detector {
   std::vector<Detection> detect_frame(size_t index) const;
 
   // The dataset.
-  size_t frame_count() const { return timestamps_.size(); }
-  double frame_timestamp(size_t index) const { return timestamps_.at(index); }
+  size_t frame_count() const { return data_.timestamps.size(); }
+  double frame_timestamp(size_t index) const { return data_.timestamps.at(index); }
   // The rgb.txt frame within 1e-4 s of `timestamp`, or -1.
   long find_frame(double timestamp) const;
-  const std::vector<TruthBox>& truth(size_t index) const { return truth_.at(index); }
+  const std::vector<TruthBox>& truth(size_t index) const { return data_.frames.at(index); }
   // classes.txt; class_id indexes it.
-  std::vector<std::string> class_names() const override { return classes_; }
-  cv::Size image_size() const { return image_size_; }
+  std::vector<std::string> class_names() const override { return data_.classes; }
+  cv::Size image_size() const { return data_.image_size; }
   const SimDetectorConfig& config() const { return config_; }
 
   // The model's terms (header comment), each in [0, 1].
@@ -97,9 +82,7 @@ class SimDetector : public Detector {
 
   std::string dir_;
   SimDetectorConfig config_;
-  std::vector<double> timestamps_;            // rgb.txt order
-  std::vector<std::vector<TruthBox>> truth_;  // per frame
-  std::vector<std::string> classes_;
+  DatasetBoxes data_;                   // rgb.txt frames, classes, image size, boxes
   std::vector<double> reference_fill_;  // per class id
   // Sizes (w, h) of all ground-truth boxes per class id (false positives).
   std::vector<std::vector<cv::Size>> class_sizes_;

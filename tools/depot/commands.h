@@ -7,6 +7,8 @@ namespace depot::cli {
 void register_sim_commands(CLI::App& app);
 void register_slam_commands(CLI::App& app);
 void register_eval_commands(CLI::App& app);
+// `depot eval detector|segmenter`, added to the eval group.
+void register_perception_eval_commands(CLI::App* eval_group);
 void register_sweep_commands(CLI::App& app);
 
 }  // namespace depot::cli

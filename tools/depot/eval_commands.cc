@@ -163,8 +163,10 @@ void run_rpe(const RpeArgs& args) {
 }  // namespace
 
 void register_eval_commands(CLI::App& app) {
-  CLI::App* group = app.add_subcommand("eval", "Trajectory accuracy: ATE and RPE (TUM / evo)");
+  CLI::App* group = app.add_subcommand(
+      "eval", "Trajectory accuracy (ATE, RPE as TUM / evo), detectors and person segmenters");
   group->require_subcommand(1);
+  register_perception_eval_commands(group);
 
   auto ate_args = std::make_shared<AteArgs>();
   CLI::App* ate = group->add_subcommand(

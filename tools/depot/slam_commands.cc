@@ -89,7 +89,8 @@ void add_rejection_options(CLI::App* cmd, runner::RunOptions& o) {
       ->check(CLI::IsMember({"orb", "orb+yolo", "orb+lk", "full"}));
   cmd->add_option(
          "--detector", o.detector,
-         "Detector: sim (simulated datasets), darknet (Yolo-Fastest), fastestdet, yolov5, file")
+         "Detector: sim (simulated datasets), darknet (Yolo-Fastest), xl (Yolo-Fastest XL), "
+         "fastestdet, yolov5, file")
       ->default_str("sim on simulated datasets, else darknet");
   cmd->add_option("--detector-config", o.detector_config,
                   "Detector YAML (dnn models, or the simulated detector)")

@@ -25,7 +25,6 @@
 namespace fs = std::filesystem;
 
 namespace depot::runner {
-namespace {
 
 std::unique_ptr<slam::Detector> make_detector(const RunOptions& o, const std::string& type) {
   if (type == "sim") {
@@ -45,21 +44,25 @@ std::unique_ptr<slam::Detector> make_detector(const RunOptions& o, const std::st
     fail("--detector-set",
          "applies to the simulated detector only (edit the " + type + " detector's YAML instead)");
   const auto& dnn = slam::dnn_detector_types();
-  if (std::find(dnn.begin(), dnn.end(), type) == dnn.end())
+  if (type != "xl" && std::find(dnn.begin(), dnn.end(), type) == dnn.end())
     fail("--detector",
-         "unknown detector '" + type + "' (expected sim, file, yolov5, darknet, fastestdet)");
+         "unknown detector '" + type + "' (expected sim, file, darknet, xl, fastestdet, yolov5)");
   std::string config = o.detector_config;
   if (config.empty()) {
     config = type == "darknet"      ? project_file("scenes/detectors/yolo_fastest.yaml")
+             : type == "xl"         ? project_file("scenes/detectors/yolo_fastest_xl.yaml")
              : type == "fastestdet" ? project_file("scenes/detectors/fastestdet.yaml")
                                     : project_file("scenes/detectors/yolov5s.yaml");
   }
   const slam::DetectorConfig loaded = slam::load_detector_config(config);
-  if (loaded.type != type)
+  const std::string expected = type == "xl" ? "darknet" : type;  // XL is a Darknet model
+  if (loaded.type != expected)
     fail(config,
          "configures a '" + loaded.type + "' detector, but --detector " + type + " was asked for");
   return slam::make_dnn_detector(loaded);
 }
+
+namespace {
 
 const char* const kKeypointHeader =
     "frame,timestamp,x,y,octave,set,kept,depth_m,on_moving,near_moving\n";

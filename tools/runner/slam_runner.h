@@ -20,7 +20,7 @@ struct RunOptions {
   std::string settings;      // optional settings YAML
   std::string mode = "orb";  // orb | orb+yolo | orb+lk | full
   std::string detector =
-      "";  // sim | darknet | fastestdet | yolov5 | file ("" = sim on simulated data)
+      "";  // sim | darknet | xl | fastestdet | yolov5 | file ("" = sim on simulated data)
   std::string detector_config;                   // YAML for dnn detectors / the simulated detector
   std::vector<YamlOverride> detector_overrides;  // simulated detector keys ("miss_rate=0.2")
   std::string detections;                        // detections file for --detector file
@@ -57,6 +57,14 @@ struct RunSummary {
   std::string settings_source;
   std::string detector_name;
 };
+
+// The detector `type` names (sim, file, darknet = Yolo-Fastest 1.1, xl =
+// Yolo-Fastest 1.1 XL, fastestdet, yolov5), configured by
+// options.detector_config (default: the shipped scenes/detectors/ YAML; for
+// sim also options.detector_overrides and detector_seed, on
+// options.dataset). Throws depot::Error for an unknown type or a bad
+// configuration.
+std::unique_ptr<slam::Detector> make_detector(const RunOptions& options, const std::string& type);
 
 // The detector and the rejection filter of a run (both empty for `orb`), the
 // a-priori class table checked against the detector's classes. The detector

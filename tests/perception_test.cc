@@ -1,0 +1,154 @@
+// Perception measured: `depot eval detector|segmenter` on a rendered walking
+// scenario and on the real TUM frame (with its hand labels), and bad input.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "eval/image_labels.h"
+#include "slam/detect/detector_config.h"
+#include "slam/detect/detector_factory.h"
+#include "slam/detect/person_segmenter.h"
+#include "tests/support/dataset_reader.h"
+#include "tests/support/render_helpers.h"
+#include "tools/runner/detector_eval.h"
+#include "tools/runner/segmenter_eval.h"
+
+namespace fs = std::filesystem;
+
+namespace depot::test {
+namespace {
+
+const std::string kSource = DEPOT_SOURCE_DIR;
+const std::string kLabels = kSource + "/eval/data/real_labels.yaml";
+const std::string kTumFrame = "fr3_walking_xyz_frame";
+
+// The shipped hand labels of the real TUM frame only.
+eval::ImageLabels tum_frame_labels() {
+  eval::ImageLabels labels = eval::read_image_labels(kLabels);
+  std::vector<eval::LabelledImage> tum;
+  for (const eval::LabelledImage& image : labels.images)
+    if (image.path.find(kTumFrame) != std::string::npos) tum.push_back(image);
+  labels.images = tum;
+  return labels;
+}
+
+bool have_shared_data() {
+  return fs::exists(std::string(DEPOT_SHARED_DATA) + "/tum/" + kTumFrame);
+}
+
+#define REQUIRE_SHARED_DATA() \
+  if (!have_shared_data()) GTEST_SKIP() << "shared real data missing: " << DEPOT_SHARED_DATA
+
+const std::string& walking_dataset() {
+  static const std::string d = render_small({"depot_walking_xyz", 6, 320, false});
+  return d;
+}
+
+nlohmann::json read_json(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+TEST(Perception, PerfectSimulatedDetectorScoresOne) {
+  const std::string json = temp_path("perfect") + ".json";
+  const std::string report = temp_path("report");
+  const DepotResult r = depot("eval detector " + walking_dataset() +
+                              " --detector sim --detector-set perfect=true -q --json " + json +
+                              " --report " + report);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const nlohmann::json person = read_json(json)["sides"][0]["classes"]["person"];
+  EXPECT_GT(person["recall_all"]["total"].get<int>(), 5) << "people in every frame";
+  EXPECT_EQ(person["recall_all"]["rate"].get<double>(), 1.0);
+  EXPECT_EQ(person["precision"]["rate"].get<double>(), 1.0);
+  EXPECT_EQ(read_json(json)["sides"][0]["false_positives"].get<int>(), 0);
+  EXPECT_TRUE(fs::exists(report + "/report.html"));
+  EXPECT_TRUE(fs::exists(report + "/recall_vs_height_1.svg"));
+  EXPECT_NE(r.output.find("person"), std::string::npos);
+}
+
+TEST(Perception, YoloFastestFindsBothPeopleOfTheRealTumFrame) {
+  REQUIRE_SHARED_DATA();
+  auto detector = slam::make_dnn_detector(
+      slam::load_detector_config(kSource + "/scenes/detectors/yolo_fastest.yaml"));
+  const eval::ImageLabels labels = tum_frame_labels();
+  ASSERT_EQ(labels.images.size(), 1u);
+  const runner::DetectorEval e =
+      runner::evaluate_on_images(*detector, labels, runner::class_mapping_for("darknet", ""), true);
+  EXPECT_EQ(e.score.tally("person").all.total, 2);
+  EXPECT_EQ(e.score.tally("person").all.found, 2);
+  EXPECT_EQ(e.score.tally("person").precision.rate(), 1.0);
+}
+
+TEST(Perception, SelfieSegmentationMasksThePeopleOfTheRealTumFrame) {
+  REQUIRE_SHARED_DATA();
+  slam::PersonSegmenter segmenter(
+      slam::load_segmenter_config(kSource + "/scenes/segmenters/selfie.yaml"));
+  const runner::SegmenterEval e =
+      runner::evaluate_segmenter_on_images(segmenter, tum_frame_labels(), true);
+  ASSERT_EQ(e.frames.size(), 1u);
+  const eval::BoxCoverage& c = e.frames[0].coverage;
+  // Measured 0.97 inside and 0.73 covered: a person's box holds background
+  // between arms and legs, so the mask covers most of it but not all.
+  EXPECT_GT(c.inside(), 0.9) << "little of the mask lies outside the people's boxes";
+  EXPECT_GT(c.covered(), 0.6) << "the mask covers most of the people's boxes";
+}
+
+TEST(Perception, SegmenterOnARenderedDataset) {
+  REQUIRE_SHARED_DATA();
+  const std::string json = temp_path("segmenter") + ".json";
+  const DepotResult r = depot("eval segmenter " + walking_dataset() + " -q --json " + json);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const nlohmann::json d = read_json(json)["dataset"];
+  EXPECT_EQ(d["frames"].size(), 6u);
+  // Measured 0.59 on these frames (0.54 over 300 frames at 640 px): the
+  // selfie model masks some primitive people well and others poorly.
+  EXPECT_GT(d["mean_iou"].get<double>(), 0.3);
+  EXPECT_LE(d["mean_iou"].get<double>(), 1.0);
+}
+
+// One error line naming the file, a non-zero exit, no output written.
+void expect_error(const std::string& args, const std::string& needle) {
+  const std::string json = temp_path("out") + ".json";
+  const DepotResult r = depot(args + " -q --json " + json);
+  EXPECT_NE(r.code, 0) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_EQ(r.output.rfind("depot: error: " + needle, 0), 0u) << r.output;
+  EXPECT_FALSE(fs::exists(json)) << "nothing written on failure";
+}
+
+std::string write_file(const std::string& tag, const std::string& text) {
+  const std::string path = temp_path(tag) + ".yaml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(Perception, BadInputIsOneErrorLine) {
+  REQUIRE_SHARED_DATA();
+  const std::string missing = temp_path("missing") + ".onnx";
+  const std::string detector_yaml = write_file("detector", "type: fastestdet\nmodel: " + missing +
+                                                               "\nnames: " + DEPOT_SHARED_DATA +
+                                                               "/models/fastestdet/coco.names\n");
+  expect_error("eval detector --images " + kLabels + " --detector fastestdet --detector-config " +
+                   detector_yaml,
+               missing + ": model file not found");
+  const std::string segmenter_yaml = write_file("segmenter", "model: " + missing + "\n");
+  expect_error("eval segmenter --images " + kLabels + " --segmenter-config " + segmenter_yaml,
+               missing + ": model file not found");
+  const std::string corrupt = write_file("labels", "classes: [person]\nimages:\n  a.png: [\n");
+  expect_error("eval detector --images " + corrupt, corrupt + ":4: YAML syntax error");
+  const std::string typo = write_file("map", "map:\n  person: persn\n");
+  expect_error("eval detector --images " + kLabels + " --class-map " + typo,
+               typo + ":2: class 'persn' is not a class of " + kLabels);
+  expect_error("eval detector " + walking_dataset() + " --class-map " + typo,
+               typo + ":2: class 'persn' is not a class of " + walking_dataset() + "/classes.txt");
+  expect_error("eval detector --images " + kLabels + " --detector sim",
+               "--detector sim: needs a simulated DATASET");
+  expect_error("eval detector", "depot eval: give a DATASET, --images LABELS.yaml, or both");
+  const std::string real = std::string(DEPOT_SHARED_DATA) + "/tum/" + kTumFrame;
+  expect_error("eval detector " + real, real + ": no ground-truth boxes (boxes.txt)");
+}
+
+}  // namespace
+}  // namespace depot::test

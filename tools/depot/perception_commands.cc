@@ -1,0 +1,206 @@
+// `depot eval detector|segmenter`: a detector or a person segmenter scored
+// against a simulated dataset's ground truth and/or hand-labelled real
+// images. The work is in tools/runner (running) and eval/ (scoring, report).
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+#include <CLI/CLI.hpp>
+
+#include "common/config_path.h"
+#include "common/error.h"
+#include "common/staged_directory.h"
+#include "common/staged_file.h"
+#include "common/yaml_overrides.h"
+#include "eval/detection_report.h"
+#include "eval/image_labels.h"
+#include "slam/detect/person_segmenter.h"
+#include "tools/depot/commands.h"
+#include "tools/runner/detector_eval.h"
+#include "tools/runner/segmenter_eval.h"
+#include "tools/runner/slam_runner.h"
+
+namespace fs = std::filesystem;
+
+namespace depot::cli {
+namespace {
+
+// A report folder is always new (or empty); its marker names it as ours.
+const OutputKind kReportKind{"detector report", "report.html", {"report.html", "report.md"}};
+
+struct DetectorArgs {
+  runner::RunOptions detector;  // dataset, detector type, its config and settings
+  std::string images;           // hand labels YAML
+  std::string class_map;
+  size_t every = 1;
+  std::string json, report;
+  bool quiet = false;
+};
+
+struct SegmenterArgs {
+  std::string dataset, images;
+  std::string config = project_file("scenes/segmenters/selfie.yaml");
+  size_t every = 1;
+  std::string json;
+  bool quiet = false;
+};
+
+void require_input(const std::string& dataset, const std::string& images) {
+  if (dataset.empty() && images.empty())
+    fail("depot eval", "give a DATASET, --images LABELS.yaml, or both");
+  if (!dataset.empty() && !fs::is_directory(dataset)) fail(dataset, "dataset folder not found");
+}
+
+std::string every_text(size_t every, size_t frames) {
+  return every == 1 ? std::to_string(frames) + " frames"
+                    : std::to_string(frames) + " frames (every " + std::to_string(every) + ")";
+}
+
+void run_detector_eval(DetectorArgs& a) {
+  const std::string& type = a.detector.detector;
+  const std::string& dataset = a.detector.dataset;
+  require_input(dataset, a.images);
+  if (type == "sim" && dataset.empty())
+    fail("--detector sim", "needs a simulated DATASET (it reads its boxes.txt), not only --images");
+  if (type == "file") fail("--detector file", "is not scored here (score the detector itself)");
+  // Everything that can be refused is refused before the first frame.
+  const eval::ClassMapping mapping = runner::class_mapping_for(type, a.class_map);
+  std::optional<eval::ImageLabels> labels;
+  if (!a.images.empty()) labels = eval::read_image_labels(a.images);
+  std::unique_ptr<slam::Detector> detector = runner::make_detector(a.detector, type);
+  std::optional<StagedFile> json;
+  if (!a.json.empty()) json.emplace(a.json);
+  std::optional<StagedDirectory> report;
+  if (!a.report.empty()) {
+    std::error_code ec;
+    if (fs::exists(a.report, ec) && !(fs::is_directory(a.report, ec) && fs::is_empty(a.report, ec)))
+      fail(a.report, "exists and is not empty (the report goes to a new or empty folder)");
+    report.emplace(a.report, kReportKind, false);
+  }
+
+  std::vector<runner::DetectorEval> evals;
+  std::vector<std::string> names;
+  if (!dataset.empty()) {
+    evals.push_back(
+        runner::evaluate_on_dataset(*detector, dataset, mapping, a.every, type != "sim", a.quiet));
+    names.push_back("sim: " + fs::path(dataset).filename().string() + ", " +
+                    every_text(a.every, evals.back().score.frames()));
+  }
+  if (labels) {
+    evals.push_back(runner::evaluate_on_images(*detector, *labels, mapping, a.quiet));
+    names.push_back("real: " + fs::path(a.images).filename().string() + ", " +
+                    std::to_string(labels->images.size()) + " images");
+  }
+  std::vector<eval::DetectionSide> sides;
+  for (size_t i = 0; i < evals.size(); ++i) sides.push_back(evals[i].side(names[i]));
+
+  for (const eval::DetectionSide& side : sides)
+    std::printf("%s\n", eval::detection_text(side).c_str());
+  if (sides.size() > 1) std::printf("%s", eval::detection_gap_text(sides).c_str());
+  if (json) {
+    nlohmann::json doc = {{"detector", type}, {"sides", nlohmann::json::array()}};
+    for (const eval::DetectionSide& side : sides)
+      doc["sides"].push_back(eval::detection_side_json(side));
+    json->stream() << doc.dump(2) << "\n";
+    json->commit();
+    std::printf("wrote %s\n", a.json.c_str());
+  }
+  if (report) {
+    eval::write_detection_report(report->path(), "Detector " + type + ": " + sides.front().detector,
+                                 sides);
+    report->commit();
+    std::printf("wrote %s/report.html\n", a.report.c_str());
+  }
+}
+
+void run_segmenter_eval(const SegmenterArgs& a) {
+  require_input(a.dataset, a.images);
+  std::optional<eval::ImageLabels> labels;
+  if (!a.images.empty()) labels = eval::read_image_labels(a.images);
+  slam::PersonSegmenter segmenter(slam::load_segmenter_config(a.config));
+  std::optional<StagedFile> json;
+  if (!a.json.empty()) json.emplace(a.json);
+
+  nlohmann::json doc = {{"segmenter", segmenter.name()}};
+  if (!a.dataset.empty()) {
+    const runner::SegmenterEval e =
+        runner::evaluate_segmenter(segmenter, a.dataset, a.every, a.quiet);
+    std::printf("sim: %s, %s: person mask (probability >= %.2f) against the label masks\n%s",
+                fs::path(a.dataset).filename().c_str(),
+                every_text(a.every, e.frames.size()).c_str(), segmenter.config().threshold,
+                e.text().c_str());
+    doc["dataset"] = e.json();
+  }
+  if (labels) {
+    const runner::SegmenterEval e =
+        runner::evaluate_segmenter_on_images(segmenter, *labels, a.quiet);
+    std::printf("real: %s: person mask against the hand-labelled person boxes\n%s",
+                fs::path(a.images).filename().c_str(), e.text().c_str());
+    doc["images"] = e.json();
+  }
+  if (json) {
+    json->stream() << doc.dump(2) << "\n";
+    json->commit();
+    std::printf("wrote %s\n", a.json.c_str());
+  }
+}
+
+}  // namespace
+
+void register_perception_eval_commands(CLI::App* group) {
+  auto d = std::make_shared<DetectorArgs>();
+  d->detector.detector = "darknet";
+  CLI::App* det = group->add_subcommand(
+      "detector",
+      "Score a detector against a simulated dataset's boxes.txt and/or hand-labelled images: "
+      "recall and precision per class at IoU 0.5, by box height and visible fraction, confusion");
+  det->add_option("DATASET", d->detector.dataset, "Simulated dataset folder (boxes.txt)");
+  det->add_option("--images", d->images,
+                  "Hand-labelled images YAML (e.g. eval/data/real_labels.yaml): the real side");
+  det->add_option("--detector", d->detector.detector,
+                  "sim (the simulated detector), darknet (Yolo-Fastest 1.1), xl (Yolo-Fastest 1.1 "
+                  "XL), fastestdet, yolov5")
+      ->check(CLI::IsMember({"sim", "darknet", "xl", "fastestdet", "yolov5"}))
+      ->capture_default_str();
+  det->add_option("--detector-config", d->detector.detector_config,
+                  "Detector YAML (default: scenes/detectors/ for the type)");
+  det->add_option_function<std::vector<std::string>>(
+      "--detector-set",
+      [d](const std::vector<std::string>& texts) {
+        for (const auto& t : texts)
+          d->detector.detector_overrides.push_back(parse_yaml_override(t, "--detector-set"));
+      },
+      "Change a simulated-detector key, e.g. --detector-set perfect=true (repeatable)");
+  det->add_option("--detector-seed", d->detector.detector_seed,
+                  "Seed of the simulated detector's errors")
+      ->capture_default_str();
+  det->add_option("--class-map", d->class_map,
+                  "Detector label -> class YAML (default: identity for sim, else "
+                  "scenes/detectors/coco_to_depot.yaml)");
+  det->add_option("--every", d->every, "Score every N-th frame of the dataset")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  det->add_option("--json", d->json, "Also write every figure as JSON");
+  det->add_option("--report", d->report,
+                  "Also write a report folder (report.html, report.md, recall-vs-height SVGs)");
+  det->add_flag("-q,--quiet", d->quiet, "No progress line");
+  det->callback([d] { run_detector_eval(*d); });
+
+  auto s = std::make_shared<SegmenterArgs>();
+  CLI::App* seg = group->add_subcommand(
+      "segmenter",
+      "Score a person segmenter: mask IoU against a simulated dataset's person label masks, and "
+      "the mask's share inside hand-labelled person boxes");
+  seg->add_option("DATASET", s->dataset, "Simulated dataset folder (labels/, objects.json)");
+  seg->add_option("--images", s->images, "Hand-labelled images YAML (their person boxes)");
+  seg->add_option("--segmenter-config", s->config, "Segmenter YAML")->capture_default_str();
+  seg->add_option("--every", s->every, "Score every N-th frame of the dataset")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  seg->add_option("--json", s->json, "Also write every figure as JSON");
+  seg->add_flag("-q,--quiet", s->quiet, "No progress line");
+  seg->callback([s] { run_segmenter_eval(*s); });
+}
+
+}  // namespace depot::cli

@@ -1,0 +1,169 @@
+#include "tools/runner/segmenter_eval.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "common/error.h"
+#include "common/interrupt.h"
+#include "common/percentile.h"
+#include "common/png_codec.h"
+#include "common/progress.h"
+#include "common/tum_io.h"
+#include "eval/instance_classes.h"
+#include "eval/motion_truth.h"
+
+namespace fs = std::filesystem;
+
+namespace depot::runner {
+namespace {
+
+constexpr const char* kPerson = "person";
+
+// The mask of one image, timed into `frame`.
+cv::Mat segment(slam::PersonSegmenter& segmenter, const cv::Mat& bgr, SegmenterFrame& frame) {
+  const auto start = std::chrono::steady_clock::now();
+  cv::Mat mask = segmenter.mask(bgr);
+  frame.ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return mask;
+}
+
+std::string fixed(double v, int digits = 3) {
+  if (!std::isfinite(v)) return "-";
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.*f", digits, v);
+  return buf;
+}
+
+}  // namespace
+
+eval::MaskCounts SegmenterEval::total() const {
+  eval::MaskCounts sum;
+  for (const SegmenterFrame& f : frames) sum.add(f.counts);
+  return sum;
+}
+
+double SegmenterEval::mean_iou() const {
+  double sum = 0.0;
+  int n = 0;
+  for (const SegmenterFrame& f : frames) {
+    if (f.counts.true_positive + f.counts.false_negative == 0) continue;
+    sum += f.counts.iou();
+    ++n;
+  }
+  return n > 0 ? sum / n : NAN;
+}
+
+double SegmenterEval::median_ms() const {
+  std::vector<double> ms;
+  for (const SegmenterFrame& f : frames) ms.push_back(f.ms);
+  return percentile(ms, 0.5);
+}
+
+nlohmann::json SegmenterEval::json() const {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const SegmenterFrame& f : frames) {
+    nlohmann::json row = {{"frame", f.name}, {"ms", f.ms}};
+    if (boxes)
+      row.update({{"mask_pixels", f.coverage.mask_pixels},
+                  {"box_pixels", f.coverage.box_pixels},
+                  {"mask_inside_boxes", f.coverage.inside()},
+                  {"boxes_covered", f.coverage.covered()}});
+    else
+      row.update({{"true_positive", f.counts.true_positive},
+                  {"false_positive", f.counts.false_positive},
+                  {"false_negative", f.counts.false_negative},
+                  {"iou", f.counts.iou()},
+                  {"precision", f.counts.precision()},
+                  {"recall", f.counts.recall()}});
+    rows.push_back(row);
+  }
+  nlohmann::json out = {{"segmenter", segmenter}, {"frames", rows}, {"median_ms", median_ms()}};
+  if (!boxes) {
+    const eval::MaskCounts t = total();
+    out.update(
+        {{"mean_iou", mean_iou()},
+         {"pooled", {{"iou", t.iou()}, {"precision", t.precision()}, {"recall", t.recall()}}}});
+  }
+  return out;
+}
+
+std::string SegmenterEval::text() const {
+  std::string out;
+  if (boxes) {
+    out += "  image                          mask inside person boxes  boxes covered\n";
+    for (const SegmenterFrame& f : frames) {
+      char line[256];
+      std::snprintf(line, sizeof(line), "  %-30s %24s  %13s\n", f.name.c_str(),
+                    fixed(f.coverage.inside()).c_str(), fixed(f.coverage.covered()).c_str());
+      out += line;
+    }
+  } else {
+    const eval::MaskCounts t = total();
+    std::vector<double> ious;
+    for (const SegmenterFrame& f : frames)
+      if (f.counts.true_positive + f.counts.false_negative > 0) ious.push_back(f.counts.iou());
+    char line[512];
+    std::snprintf(line, sizeof(line),
+                  "  person mask IoU: mean %s over %zu frames with people (median %s, p10 %s, "
+                  "p90 %s)\n  pooled pixels: IoU %s, precision %s, recall %s\n",
+                  fixed(mean_iou()).c_str(), ious.size(), fixed(percentile(ious, 0.5)).c_str(),
+                  fixed(percentile(ious, 0.1)).c_str(), fixed(percentile(ious, 0.9)).c_str(),
+                  fixed(t.iou()).c_str(), fixed(t.precision()).c_str(), fixed(t.recall()).c_str());
+    out += line;
+  }
+  char line[256];
+  std::snprintf(line, sizeof(line), "  %zu frames, median %.1f ms per frame (%s)\n", frames.size(),
+                median_ms(), segmenter.c_str());
+  return out + line;
+}
+
+SegmenterEval evaluate_segmenter(slam::PersonSegmenter& segmenter, const std::string& dataset,
+                                 size_t every, bool quiet) {
+  const eval::MotionTruth truth(dataset);
+  const std::set<int> people = eval::instances_of(eval::read_instance_classes(dataset), kPerson);
+  const std::vector<StampedFile> rgb = read_file_list((fs::path(dataset) / "rgb.txt").string());
+  SegmenterEval eval{segmenter.name(), false, {}};
+  Progress progress("eval segmenter", (rgb.size() + every - 1) / every, !quiet);
+  for (size_t i = 0; i < rgb.size(); i += every) {
+    throw_if_interrupted(dataset);
+    SegmenterFrame frame;
+    char stamp[32];
+    std::snprintf(stamp, sizeof(stamp), "%.6f", rgb[i].timestamp);
+    frame.name = stamp;
+    const cv::Mat mask =
+        segment(segmenter,
+                read_image((fs::path(dataset) / rgb[i].path).string(), ImageRead::kColor), frame);
+    frame.counts.add(mask, eval::instances_mask(truth.label_image(rgb[i].timestamp), people));
+    eval.frames.push_back(frame);
+    progress.update(eval.frames.size(), "frame " + std::to_string(i));
+  }
+  progress.finish();
+  return eval;
+}
+
+SegmenterEval evaluate_segmenter_on_images(slam::PersonSegmenter& segmenter,
+                                           const eval::ImageLabels& labels, bool quiet) {
+  SegmenterEval eval{segmenter.name(), true, {}};
+  Progress progress("eval segmenter", labels.images.size(), !quiet);
+  for (const eval::LabelledImage& image : labels.images) {
+    throw_if_interrupted(labels.path);
+    std::vector<cv::Rect2f> people;
+    for (const eval::TruthObject& b : image.boxes)
+      if (b.class_name == kPerson) people.push_back(b.box);
+    if (people.empty()) continue;
+    SegmenterFrame frame;
+    frame.name = fs::path(image.path).filename().string();
+    const cv::Mat bgr = read_image(image.path, ImageRead::kColor);
+    eval::check_image_size(image, bgr.cols, bgr.rows);
+    frame.coverage = eval::box_coverage(segment(segmenter, bgr, frame), people);
+    eval.frames.push_back(frame);
+    progress.update(eval.frames.size(), frame.name);
+  }
+  progress.finish();
+  return eval;
+}
+
+}  // namespace depot::runner
