@@ -134,11 +134,20 @@ TEST(MujocoMesh, PersonCompilesInMujocoWithEveryVertexWhereItWasPut) {
     EXPECT_GE(mm->geom_matid[g], 0) << mesh.name;
     // MuJoCo moved the mesh to its centre of mass (geom_pos) ...
     EXPECT_GT(Eigen::Map<const Eigen::Vector3d>(mm->geom_pos + 3 * g).norm(), 0.05);
-    // ... but vertex i still lands where the model put it.
+    // ... but vertex i still lands where the model put it, with its normal
+    // (turned into the geom frame) and its UV.
+    const Eigen::Matrix3d geom_rotation = geom_in_body(mm, g).linear();
     for (size_t v = 0; v < mesh.positions.size(); v += 7) {
       const Eigen::Vector3d expected = kBody * mesh.positions[v].cast<double>();
       ASSERT_LT((world_vertex(mm, c->data, g, static_cast<int>(v)) - expected).norm(), 1e-5)
           << mesh.name << " vertex " << v;
+      const float* n = mm->mesh_normal + 3 * (mm->mesh_vertadr[id] + v);
+      ASSERT_LT((geom_rotation * Eigen::Vector3d(n[0], n[1], n[2]) - mesh.normals[v].cast<double>())
+                    .norm(),
+                1e-4)
+          << mesh.name << " normal " << v;
+      const float* uv = mm->mesh_texcoord + 2 * (mm->mesh_texcoordadr[id] + v);
+      ASSERT_EQ(Eigen::Vector2f(uv[0], uv[1]), mesh.uvs[v]) << mesh.name << " uv " << v;
     }
     for (size_t v = 0; v < mesh.positions.size(); ++v)
       box.extend(world_vertex(mm, c->data, g, static_cast<int>(v)));
