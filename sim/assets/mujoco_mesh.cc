@@ -1,6 +1,7 @@
 #include "sim/assets/mujoco_mesh.h"
 
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <opencv2/imgcodecs.hpp>

@@ -95,8 +95,9 @@ void skinning_matrices(const Skeleton& skeleton, const std::vector<Eigen::Affine
 void skin_mesh(const AssetMesh& mesh, const std::vector<Eigen::Affine3d>& matrices,
                std::vector<Eigen::Vector3f>& positions, std::vector<Eigen::Vector3f>& normals) {
   const size_t n = mesh.positions.size();
+  const bool has_normals = mesh.normals.size() == n;
   positions.resize(n);
-  normals.resize(n);
+  normals.resize(has_normals ? n : 0);
   if (mesh.bones.empty()) {
     positions = mesh.positions;
     normals = mesh.normals;
@@ -117,10 +118,11 @@ void skin_mesh(const AssetMesh& mesh, const std::vector<Eigen::Affine3d>& matric
     }
     if (!any) {
       positions[v] = mesh.positions[v];
-      normals[v] = mesh.normals[v];
+      if (has_normals) normals[v] = mesh.normals[v];
       continue;
     }
     positions[v] = blend.leftCols<3>() * mesh.positions[v] + blend.col(3);
+    if (!has_normals) continue;
     // The blended linear part is a rotation times a near-uniform scale for
     // these rigs: transforming the normal by it and renormalising is enough.
     const Eigen::Vector3f nrm = blend.leftCols<3>() * mesh.normals[v];

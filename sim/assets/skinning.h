@@ -43,8 +43,8 @@ void skinning_matrices(const Skeleton& skeleton, const std::vector<Eigen::Affine
                        std::vector<Eigen::Affine3d>& matrices);
 
 // Linear blend skinning of one mesh: deformed positions and unit normals in
-// the model frame. A rigid mesh (no bone weights) and unweighted vertices
-// keep their bind positions.
+// the model frame (no normals out for a mesh without normals). A rigid mesh
+// (no bone weights) and unweighted vertices keep their bind positions.
 void skin_mesh(const AssetMesh& mesh, const std::vector<Eigen::Affine3d>& matrices,
                std::vector<Eigen::Vector3f>& positions, std::vector<Eigen::Vector3f>& normals);
 
