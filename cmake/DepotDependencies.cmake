@@ -6,6 +6,7 @@ find_package(yaml-cpp REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(PNG REQUIRED)
+find_package(assimp 5.2 REQUIRED)  # model files (glTF/GLB, FBX, OBJ) for sim/assets
 
 find_package(mujoco 2.2 REQUIRED)
 # Debian's mujoco target names /usr/include/libqhull_r, which exists only with
