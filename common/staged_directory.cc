@@ -54,12 +54,8 @@ void restore_or_remove_stale_replaced(const fs::path& target) {
   std::error_code ec;
   for (fs::directory_iterator it(target.parent_path(), ec), end; !ec && it != end;
        it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (name.compare(0, prefix.size(), prefix) != 0) continue;
-    const std::string digits = name.substr(prefix.size());
-    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos ||
-        digits.size() > 9 || process_is_alive(std::stol(digits)))
-      continue;
+    const long pid = staged_entry_pid(it->path().filename().string(), prefix);
+    if (pid < 0 || process_is_alive(pid)) continue;
     std::error_code move_error;
     if (!fs::exists(target, move_error)) {
       fs::rename(it->path(), target, move_error);

@@ -9,6 +9,9 @@ namespace depot {
 // True when a process with this id exists (including one of another user).
 bool process_is_alive(long pid);
 
+// The pid of an entry named "<prefix><pid>", or -1 when `name` is not one.
+long staged_entry_pid(const std::string& name, const std::string& prefix);
+
 // Removes the entries "<prefix><pid>" of `folder` whose process is gone;
 // returns how many were removed. Entries of live processes stay.
 int remove_stale_partials(const std::string& folder, const std::string& prefix);
