@@ -35,11 +35,12 @@ struct Truth {
 
 // `depot sim truth` in-process: 60 frames of a shipped scenario.
 Truth truth(const std::string& scenario, uint64_t seed,
-            const std::vector<YamlOverride>& overrides = {}) {
+            const std::vector<YamlOverride>& overrides = {}, double load = 1.0) {
   sim::RenderRequest request;
   request.dataset.output = temp_path("truth");
   request.frames = 60;
   request.seed = seed;
+  request.dynamic_load = load;
   request.progress = false;
   sim::export_truth(sim::load_scenario(scenario_path(scenario), overrides), request);
   Truth t;
@@ -119,8 +120,9 @@ std::string tight_lanes() {
 
 // Every lane actor of `scenario` over `seeds`: the varied path stays within
 // its lane and clear of geometry. Returns how many actors were shifted.
-int check_lanes(const std::string& path, int seeds) {
-  sim::Scenario scenario = sim::load_scenario(path);
+int check_lanes(const std::string& path, int seeds,
+                const std::vector<YamlOverride>& overrides = {}) {
+  sim::Scenario scenario = sim::load_scenario(path, overrides);
   const sim::SceneLayout layout = sim::load_scene_layout(scenario.scene_path);
   int shifted = 0;
   for (uint64_t seed = 1; seed <= static_cast<uint64_t>(seeds); ++seed) {
@@ -165,6 +167,8 @@ TEST(WorldSeed, VariedPathsStayInTheirLanesAndClearOfGeometry) {
       lanes += 6 * sim::has_lane(a);
   }
   EXPECT_GT(shifted, lanes / 2) << "most lanes are actually shifted";
+  // Clones of the dynamic load have lanes of their own.
+  EXPECT_GT(check_lanes(scenario_path("depot_patrol"), 2, {{"dynamic_load", "3"}}), 10);
   const std::string tight = temp_path("tight") + ".yaml";
   std::ofstream(tight) << tight_lanes();
   EXPECT_GT(check_lanes(tight, 12), 0);
@@ -215,12 +219,16 @@ TEST(WorldSeed, PushersStartClearOfTheirTarget) {
   const std::string clear = temp_path("pusher_clear") + ".yaml";
   std::ofstream(clear) << pusher_starting_at(-2.65);
   EXPECT_EQ(error_of([&] { sim::export_truth(sim::load_scenario(clear), request); }), "");
-  // The shipped pushed chair stands where it was put at frame 0, whatever
-  // the seed (sizes and start times vary).
+  // The shipped pushed chair and cart stand where they were put at frame 0,
+  // whatever the seed (sizes and start times vary) and the dynamic load.
   for (uint64_t seed = 1; seed <= 6; ++seed) {
-    const Truth t = truth("depot_walking_xyz", seed);
+    const double load = seed <= 4 ? 1.0 : 4.0;
+    const Truth t = truth("depot_walking_xyz", seed, {}, load);
     EXPECT_LT((t.first_positions.at("chair_pushed") - Eigen::Vector3d(-1.6, 2.35, 0)).norm(), 1e-3)
-        << "seed " << seed;
+        << "seed " << seed << " load " << load;
+    const Truth p = truth("depot_patrol", seed, {}, load);
+    EXPECT_LT((p.first_positions.at("cart_1") - Eigen::Vector3d(-2.6, -3.3, 0)).norm(), 1e-3)
+        << "seed " << seed << " load " << load;
   }
 }
 

@@ -203,6 +203,7 @@ void DatasetWriter::write_text_files() {
                          {"scenario", scenario_.name},
                          {"description", scenario_.description},
                          {"seed", scenario_.seed},
+                         {"world_seed", scenario_.world_seed()},
                          {"frames", frames_},
                          {"dynamic_load", scenario_.dynamic_load},
                          {"sensor", s.ideal ? "ideal" : "kinect"},

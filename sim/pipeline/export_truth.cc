@@ -52,6 +52,7 @@ TruthSummary export_truth(Scenario scenario, const RenderRequest& request) {
   nlohmann::json info = {{"generator", "depot-slam simulator (ground truth only)"},
                          {"scenario", scenario.name},
                          {"seed", scenario.seed},
+                         {"world_seed", scenario.world_seed()},
                          {"frames", sequence.frame_count()},
                          {"dynamic_load", scenario.dynamic_load},
                          {"motion", scenario.motion.type}};

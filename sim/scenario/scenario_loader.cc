@@ -349,7 +349,9 @@ void apply_dynamic_load(Scenario& s, double load) {
   for (auto& a : kept) {
     if (!is_living_actor(a.type)) continue;
     a.speed *= speed_scale;
-    a.size *= size_scale;
+    // A pusher keeps its size: a bigger one would start with its hands in
+    // its chair or cart (build_scene refuses that).
+    if (a.action != "push") a.size *= size_scale;
   }
   s.actors = kept;
 }
