@@ -175,17 +175,37 @@ TEST(WorldSeed, VariedPathsStayInTheirLanesAndClearOfGeometry) {
 }
 
 TEST(WorldSeed, PushersKeepTheirPathAndSittersTheirChair) {
-  sim::Scenario s = sim::load_scenario(scenario_path("depot_walking_xyz"));
-  const sim::StaticObstacles obstacles(sim::load_scene_layout(s.scene_path), 4);
-  const auto varied = sim::vary_actors(s.actors, 4, obstacles);
-  for (size_t i = 0; i < varied.size(); ++i) {
-    EXPECT_EQ(varied[i].path, s.actors[i].path) << varied[i].name;
-    EXPECT_EQ(varied[i].position, s.actors[i].position) << varied[i].name;
-    if (varied[i].action == "push") {
-      EXPECT_GE(varied[i].start_time, s.actors[i].start_time);
-      EXPECT_LE(varied[i].start_time, s.actors[i].start_time + 1.0);
+  // Pushers, sitters, chairs and carts of the shipped scenarios, over seeds:
+  // only a pusher's start time and speed (and everyone's appearance) change.
+  int pushers = 0, others = 0;
+  for (const char* name : {"depot_walking_xyz", "depot_sitting_static", "depot_patrol"}) {
+    const sim::Scenario s = sim::load_scenario(scenario_path(name));
+    for (uint64_t seed = 1; seed <= 4; ++seed) {
+      const sim::StaticObstacles obstacles(sim::load_scene_layout(s.scene_path), seed);
+      const auto varied = sim::vary_actors(s.actors, seed, obstacles);
+      for (size_t i = 0; i < varied.size(); ++i) {
+        const sim::ActorSpec &a = s.actors[i], &v = varied[i];
+        if (sim::has_lane(a)) continue;
+        EXPECT_EQ(v.path, a.path) << v.name;
+        EXPECT_EQ(v.position, a.position) << v.name;
+        EXPECT_EQ(v.start_offset, a.start_offset) << v.name;
+        EXPECT_EQ(v.lane.bound(), 0.0) << v.name;
+        EXPECT_EQ(v.target, a.target) << v.name;
+        if (v.action == "push") {
+          ++pushers;
+          EXPECT_GE(v.start_time, a.start_time) << v.name;
+          EXPECT_LE(v.start_time, a.start_time + 1.0) << v.name;
+          EXPECT_NEAR(v.speed, a.speed, 0.08 * a.speed) << v.name;
+        } else {
+          ++others;
+          EXPECT_EQ(v.start_time, a.start_time) << v.name;
+          EXPECT_EQ(v.speed, a.speed) << v.name;
+        }
+      }
     }
   }
+  EXPECT_EQ(pushers, 2 * 4);
+  EXPECT_EQ(others, (3 + 4 + 1) * 4);  // chairs and sitters, chairs and sitters, the cart
 }
 
 // A person's size varies with the seed (0.92..1.07): a pusher must start
