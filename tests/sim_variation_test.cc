@@ -29,7 +29,7 @@ std::string read_file(const std::string& path) {
 }
 
 struct Truth {
-  std::string object_poses, groundtruth, objects;
+  std::string object_poses, groundtruth, objects, info;
   std::map<std::string, Eigen::Vector3d> first_positions;  // actor name -> frame 0
 };
 
@@ -47,6 +47,7 @@ Truth truth(const std::string& scenario, uint64_t seed,
   t.object_poses = read_file(request.dataset.output + "/object_poses.txt");
   t.groundtruth = read_file(request.dataset.output + "/groundtruth.txt");
   t.objects = read_file(request.dataset.output + "/objects.json");
+  t.info = read_file(request.dataset.output + "/info.json");
   // Names from objects.json, positions from the first frame's rows of
   // object_poses.txt ("timestamp id tx ty tz qx qy qz qw moving").
   std::map<int, std::string> names;
@@ -99,6 +100,8 @@ TEST(WorldSeed, SeedWorldFixesTheWorld) {
       << "seed_world: the world is the same for all seeds";
   EXPECT_EQ(one.objects, two.objects);
   EXPECT_NE(one.groundtruth, two.groundtruth) << "the seed still moves the hand-held camera";
+  EXPECT_NE(two.info.find("\"seed\": 2"), std::string::npos) << two.info;
+  EXPECT_NE(two.info.find("\"world_seed\": 5"), std::string::npos) << two.info;
   // seed_world: N is the world that seed N draws.
   EXPECT_EQ(one.object_poses, truth("depot_walking_xyz", 5).object_poses);
 }

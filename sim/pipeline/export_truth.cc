@@ -52,10 +52,10 @@ TruthSummary export_truth(Scenario scenario, const RenderRequest& request) {
   nlohmann::json info = {{"generator", "depot-slam simulator (ground truth only)"},
                          {"scenario", scenario.name},
                          {"seed", scenario.seed},
-                         {"world_seed", scenario.world_seed()},
                          {"frames", sequence.frame_count()},
                          {"dynamic_load", scenario.dynamic_load},
                          {"motion", scenario.motion.type}};
+  info["world_seed"] = scenario.world_seed();
   write_text_file_atomic((root / "info.json").string(), info.dump(1) + "\n");
   std::ifstream src(scenario.source_path, std::ios::binary);
   write_text_file_atomic(
