@@ -11,6 +11,10 @@ Pose ground_pose(const Eigen::Vector2d& xy, double z, double yaw) {
   return make_pose(rot_z(yaw), Eigen::Vector3d(xy.x(), xy.y(), z));
 }
 
+Path2D actor_path(const ActorSpec& spec) {
+  return Path2D(spec.path, spec.loop, spec.type == "bird" ? 0.8 : 0.5, spec.lane);
+}
+
 std::unique_ptr<Actor> make_actor(const ActorSpec& spec, const SeatPose* seat) {
   if (spec.type == "human") return std::make_unique<HumanActor>(spec, seat);
   if (spec.type == "dog" || spec.type == "cat" || spec.type == "pig")

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/pose.h"
+#include "sim/actors/path.h"
 #include "sim/scenario/scenario.h"
 
 namespace depot::sim {
@@ -49,6 +50,10 @@ struct SeatPose {
 };
 
 std::unique_ptr<Actor> make_actor(const ActorSpec& spec, const SeatPose* seat);
+
+// The smoothed path a walking, flying or pushing actor follows (birds turn
+// wider), including its lane offset.
+Path2D actor_path(const ActorSpec& spec);
 
 // Root pose on the ground: position (x, y), heading yaw about +z.
 Pose ground_pose(const Eigen::Vector2d& xy, double z, double yaw);

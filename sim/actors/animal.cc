@@ -18,7 +18,8 @@ QuadrupedActor::QuadrupedActor(const ActorSpec& spec) {
   speed_ = spec.speed;
   offset_ = spec.start_offset;
   start_time_ = spec.start_time;
-  path_ = Path2D(spec.path, spec.loop);
+  gait_phase_ = spec.gait_phase;
+  path_ = actor_path(spec);
   std::string fur;
   if (spec.type == "dog") {
     b_ = {0.24, 0.13, 0.50, 0.38, 0.045, 0.11, 0.9, 0.25};
@@ -71,7 +72,8 @@ Eigen::AlignedBox3d QuadrupedActor::local_extent() const {
 void QuadrupedActor::pose_parts(double t, std::vector<Pose>& out) const {
   const double s = scale_;
   const bool moving = t >= start_time_ && speed_ > 0.0;
-  const double phi = moving ? 2.0 * M_PI * (distance(t) - offset_) / (b_.stride * s) : 0.0;
+  const double phi =
+      moving ? 2.0 * M_PI * (distance(t) - offset_) / (b_.stride * s) + gait_phase_ : gait_phase_;
   const double amp = moving ? deg(28.0) : 0.0;
   const Pose root = root_pose(t);
   const double body_z = (b_.body_height + 0.015 * std::cos(2.0 * phi)) * s;
@@ -116,8 +118,8 @@ BirdActor::BirdActor(const ActorSpec& spec) {
   offset_ = spec.start_offset;
   start_time_ = spec.start_time;
   height_ = spec.height;
-  phase_ = rng.uniform(0.0, 2.0 * M_PI);
-  path_ = Path2D(spec.path, spec.loop, 0.8);
+  phase_ = rng.uniform(0.0, 2.0 * M_PI) + spec.gait_phase;
+  path_ = actor_path(spec);
   const double s = scale_;
   const std::string feathers = "feathers_" + std::to_string(rng.below(2));
   parts_.push_back(

@@ -21,7 +21,7 @@ class QuadrupedActor : public Actor {
   double distance(double t) const;
   Build b_{};
   Path2D path_;
-  double speed_ = 1.0, offset_ = 0.0, start_time_ = 0.0, scale_ = 1.0;
+  double speed_ = 1.0, offset_ = 0.0, start_time_ = 0.0, scale_ = 1.0, gait_phase_ = 0.0;
 };
 
 // A bird flying a path at some height with flapping wings.

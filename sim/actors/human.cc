@@ -47,17 +47,18 @@ HumanActor::HumanActor(const ActorSpec& spec, const SeatPose* seat) {
   name_ = spec.name;
   class_name_ = "person";
   Rng rng(spec.appearance);
-  scale_ = spec.size * rng.uniform(0.92, 1.07);
+  scale_ = spec.size * rng.uniform(0.92, kLargestScale);
   speed_ = spec.speed;
   offset_ = spec.start_offset;
   start_time_ = spec.start_time;
   phase_ = rng.uniform(0.0, 2.0 * M_PI);
+  gait_phase_ = spec.gait_phase;
   if (spec.action == "sit") {
     mode_ = Mode::kSit;
     if (seat) seat_ = *seat;
   } else {
     mode_ = spec.action == "push" ? Mode::kPush : Mode::kWalk;
-    path_ = Path2D(spec.path, spec.loop);
+    path_ = actor_path(spec);
   }
 
   const std::string shirt = "shirt_" + std::to_string(rng.below(6));
@@ -85,8 +86,16 @@ HumanActor::HumanActor(const ActorSpec& spec, const SeatPose* seat) {
   if (mode_ == Mode::kPush) {
     // Hand height of the plate is low (0.3-0.62 m): it pushes seats and cart
     // frames near their centre of mass, so they slide rather than tip.
-    parts_.push_back({"pusher", Shape::kBox, Eigen::Vector3d(0.05, 0.26, 0.16) * s, "", true});
+    parts_.push_back({"pusher", Shape::kBox, push_plate_half(s), "", true});
   }
+}
+
+Eigen::Vector3d HumanActor::push_plate_centre(double scale) {
+  return Eigen::Vector3d(0.42, 0.0, 0.46) * scale;
+}
+
+Eigen::Vector3d HumanActor::push_plate_half(double scale) {
+  return Eigen::Vector3d(0.05, 0.26, 0.16) * scale;
 }
 
 double HumanActor::distance(double t) const {
@@ -127,7 +136,8 @@ void HumanActor::pose_parts(double t, std::vector<Pose>& out) const {
     // Walking: phase advances with distance (stride 1.35 m per full cycle).
     const bool moving = t >= start_time_ && speed_ > 0.0;
     const double stride = 1.35 * s;
-    const double phi = moving ? 2.0 * M_PI * (distance(t) - offset_) / stride : 0.0;
+    const double phi =
+        moving ? 2.0 * M_PI * (distance(t) - offset_) / stride + gait_phase_ : gait_phase_;
     const double amp = moving ? deg(22.0) * std::clamp(speed_ / 1.2, 0.6, 1.3) : 0.0;
     p.hip[0] = amp * std::sin(phi);
     p.hip[1] = -amp * std::sin(phi);
@@ -184,7 +194,7 @@ void HumanActor::pose_parts(double t, std::vector<Pose>& out) const {
   local[kHead] = make_pose(r_head, head);
   local[kHair] = make_pose(r_head, head + r_head * Eigen::Vector3d(-0.02 * s, 0, 0.045 * s));
   if (mode_ == Mode::kPush)
-    local[kPusher] = make_pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.42 * s, 0, 0.46 * s));
+    local[kPusher] = make_pose(Eigen::Matrix3d::Identity(), push_plate_centre(s));
 
   out.resize(parts_.size());
   for (size_t i = 0; i < parts_.size(); ++i) out[i] = root * local[i];

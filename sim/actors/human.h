@@ -15,6 +15,13 @@ class HumanActor : public Actor {
   Pose root_pose(double t) const override;
   Eigen::AlignedBox3d local_extent() const override;
 
+  // The invisible push plate in the root frame of a person of `scale`:
+  // centre and half extents.
+  static Eigen::Vector3d push_plate_centre(double scale);
+  static Eigen::Vector3d push_plate_half(double scale);
+  // The largest size factor an appearance gives (size x 0.92..1.07).
+  static constexpr double kLargestScale = 1.07;
+
  private:
   enum class Mode { kWalk, kPush, kSit };
   double distance(double t) const;
@@ -25,7 +32,8 @@ class HumanActor : public Actor {
   double offset_ = 0.0;
   double start_time_ = 0.0;
   double scale_ = 1.0;
-  double phase_ = 0.0;  // per-person offset of idle motions
+  double phase_ = 0.0;       // per-person offset of idle motions
+  double gait_phase_ = 0.0;  // rad, walking cycle at the start
   SeatPose seat_;
 };
 

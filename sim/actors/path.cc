@@ -40,9 +40,27 @@ std::vector<Eigen::Vector2d> densify_corners(const std::vector<Eigen::Vector2d>&
   return out;
 }
 
+// Arc lengths along a polyline.
+std::vector<double> arc_lengths(const std::vector<Eigen::Vector2d>& points) {
+  std::vector<double> out(points.size(), 0.0);
+  for (size_t i = 1; i < points.size(); ++i)
+    out[i] = out[i - 1] + (points[i] - points[i - 1]).norm();
+  return out;
+}
+
 }  // namespace
 
-Path2D::Path2D(const std::vector<Eigen::Vector2d>& waypoints, bool closed, double corner_radius) {
+double LaneOffset::at(double s, double length) const {
+  if (none() || length <= 0.0) return constant;
+  return constant + amplitude * std::sin(2.0 * M_PI * cycles * s / length + phase);
+}
+
+double LaneOffset::bound() const {
+  return std::abs(constant) + std::abs(amplitude);
+}
+
+Path2D::Path2D(const std::vector<Eigen::Vector2d>& waypoints, bool closed, double corner_radius,
+               const LaneOffset& lane) {
   std::vector<Eigen::Vector2d> loop = waypoints;
   if (!closed && waypoints.size() >= 2) {
     // Out and back with a 0.4 m sideways offset on the way back.
@@ -55,11 +73,23 @@ Path2D::Path2D(const std::vector<Eigen::Vector2d>& waypoints, bool closed, doubl
   std::vector<Eigen::Vector2d> pts = densify_corners(loop, corner_radius);
   for (int pass = 0; pass < 4; ++pass) pts = chaikin(pts);
   pts.push_back(pts.front());
+  if (!lane.none() && pts.size() > 2) {
+    // Shift each point along its left normal (the direction between its
+    // neighbours on the closed loop) by the lane offset at its arc length.
+    const std::vector<double> s = arc_lengths(pts);
+    const size_t n = pts.size() - 1;  // distinct points
+    std::vector<Eigen::Vector2d> shifted(pts.size());
+    for (size_t i = 0; i < n; ++i) {
+      Eigen::Vector2d d = pts[(i + 1) % n] - pts[(i + n - 1) % n];
+      if (d.norm() < 1e-12) d = Eigen::Vector2d(1.0, 0.0);
+      d.normalize();
+      shifted[i] = pts[i] + lane.at(s[i], s.back()) * Eigen::Vector2d(-d.y(), d.x());
+    }
+    shifted[n] = shifted[0];
+    pts = shifted;
+  }
   points_ = pts;
-  cumulative_.resize(points_.size());
-  cumulative_[0] = 0.0;
-  for (size_t i = 1; i < points_.size(); ++i)
-    cumulative_[i] = cumulative_[i - 1] + (points_[i] - points_[i - 1]).norm();
+  cumulative_ = arc_lengths(points_);
 }
 
 double Path2D::wrap(double s) const {

@@ -218,6 +218,7 @@ void DatasetWriter::write_text_files() {
                          {"dynamic_load", scenario_.dynamic_load},
                          {"sensor", s.ideal ? "ideal" : "kinect"},
                          {"motion", scenario_.motion.type}};
+  info["world_seed"] = scenario_.world_seed();
   write("info.json", info.dump(1) + "\n");
   std::ifstream src(scenario_.source_path, std::ios::binary);
   std::string yaml((std::istreambuf_iterator<char>(src)), std::istreambuf_iterator<char>());

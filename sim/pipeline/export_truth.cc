@@ -55,6 +55,7 @@ TruthSummary export_truth(Scenario scenario, const RenderRequest& request) {
                          {"frames", sequence.frame_count()},
                          {"dynamic_load", scenario.dynamic_load},
                          {"motion", scenario.motion.type}};
+  info["world_seed"] = scenario.world_seed();
   write_text_file_atomic((root / "info.json").string(), info.dump(1) + "\n");
   std::ifstream src(scenario.source_path, std::ios::binary);
   write_text_file_atomic(

@@ -2,10 +2,13 @@
 // A scenario: everything needed to render one dataset, as plain data.
 // Loaded and validated from YAML by scenario_loader.h; nothing here renders.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "sim/actors/path.h"
 
 namespace depot::sim {
 
@@ -35,6 +38,11 @@ struct CameraMotionSpec {
   // file
   std::string file;               // TUM trajectory, resolved path
   bool anchor_first_pose = true;  // place the first pose at position/look_at
+  // Least distance (m) from the camera to static scene geometry at any frame;
+  // negative = the sensor's min_depth. Closer frames are refused unless
+  // allow_close (then warned about). See sim/world/camera_clearance.h.
+  double clearance = -1.0;
+  bool allow_close = false;
 };
 
 struct TimestampSpec {
@@ -68,6 +76,10 @@ struct ActorSpec {
   std::string target;   // push: pushable name; sit: chair name
   double height = 0.0;  // bird flight height
   uint64_t appearance = 0;
+  bool fixed_appearance = false;  // `appearance` written in the file (not drawn from the seed)
+  // Drawn from the world seed (sim/actors/actor_variation.h); zero as written.
+  LaneOffset lane;          // sideways shift of the path within its lane
+  double gait_phase = 0.0;  // rad, phase of the walking cycle at the start
 };
 
 struct Scenario {
@@ -77,6 +89,10 @@ struct Scenario {
   std::string scene_path;   // scene layout YAML
   std::string classes_path;
   uint64_t seed = 1;
+  // `seed_world`: fixes the world (scene fill, textures, actor timing, lanes
+  // and variants) independently of `seed`; unset, the seed draws both.
+  std::optional<uint64_t> seed_world;
+  uint64_t world_seed() const { return seed_world ? *seed_world : seed; }
   int frames = 300;
   bool shadows = false;
   double dynamic_load = 1.0;

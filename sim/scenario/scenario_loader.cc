@@ -163,7 +163,8 @@ void read_camera(const Fields& f, CameraIntrinsics& cam) {
 
 void read_motion(const Fields& f, CameraMotionSpec& m) {
   f.allow_only({"type", "position", "look_at", "amplitude", "period", "tremor", "path", "height",
-                "speed", "pitch_deg", "loop", "file", "anchor_first_pose"});
+                "speed", "pitch_deg", "loop", "file", "anchor_first_pose", "clearance",
+                "allow_close"});
   m.type = f.str("type", "static");
   if (!kMotionTypes.count(m.type))
     fail(f.where(f.node("type")), "unknown camera motion '" + m.type +
@@ -182,6 +183,8 @@ void read_motion(const Fields& f, CameraMotionSpec& m) {
   m.loop = f.get<bool>("loop", true);
   m.file = f.existing_file("file");
   m.anchor_first_pose = f.get<bool>("anchor_first_pose", true);
+  if (f.has("clearance")) m.clearance = f.number("clearance", 0.0, 0.0, 10.0);
+  m.allow_close = f.get<bool>("allow_close", false);
   if (m.type == "waypoints" && m.path.size() < 2)
     fail(f.where(), "waypoints motion needs a 'path' of at least two points");
   if (m.type == "file" && m.file.empty()) fail(f.where(), "file motion needs 'file'");
@@ -230,6 +233,7 @@ ActorSpec read_actor(const Fields& f, size_t index, uint64_t seed) {
   a.yaw_deg = f.number("yaw_deg", 0.0, -720.0, 720.0);
   a.height = f.number("height", a.type == "bird" ? 1.6 : 0.0, 0.0, 4.0);
   a.appearance = f.get<uint64_t>("appearance", seed * 7919 + index);
+  a.fixed_appearance = f.has("appearance");
   if (f.has("pushes")) {
     a.action = "push";
     a.target = f.str("pushes");
@@ -255,8 +259,8 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
   if (!root || root.IsNull()) fail(path, "empty scenario file");
   for (const auto& o : overrides) apply_yaml_override(root, o, path + " (--set " + o.key + ")");
   Fields top(root, path, "scenario");
-  top.allow_only({"name", "description", "scene", "classes", "seed", "frames", "shadows",
-                  "dynamic_load", "camera", "motion", "timestamps", "sensor", "actors"});
+  top.allow_only({"name", "description", "scene", "classes", "seed", "seed_world", "frames",
+                  "shadows", "dynamic_load", "camera", "motion", "timestamps", "sensor", "actors"});
 
   Scenario s;
   s.source_path = path;
@@ -268,6 +272,7 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
   s.classes_path =
       top.has("classes") ? top.existing_file("classes") : project_file("scenes/classes.yaml");
   s.seed = top.get<uint64_t>("seed", 1);
+  if (top.has("seed_world")) s.seed_world = top.get<uint64_t>("seed_world", 0);
   s.frames = static_cast<int>(top.number("frames", 300, 1, 1e6));
   s.shadows = top.get<bool>("shadows", false);
   s.dynamic_load = top.number("dynamic_load", 1.0, 0.0, 4.0);
@@ -349,7 +354,9 @@ void apply_dynamic_load(Scenario& s, double load) {
   for (auto& a : kept) {
     if (!is_living_actor(a.type)) continue;
     a.speed *= speed_scale;
-    a.size *= size_scale;
+    // A pusher keeps its size: a bigger one would start with its hands in
+    // its chair or cart (build_scene refuses that).
+    if (a.action != "push") a.size *= size_scale;
   }
   s.actors = kept;
 }

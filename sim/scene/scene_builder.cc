@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "common/rng.h"
+#include "sim/actors/human.h"
 #include "sim/actors/limb.h"
 #include "sim/scene/depot_objects.h"
 #include "sim/scene/geometry.h"
@@ -118,6 +119,41 @@ bool inside_hall(const SceneLayout& l, const Eigen::Vector2d& p, double margin =
   return std::abs(p.x()) <= l.length / 2 - margin && std::abs(p.y()) <= l.width / 2 - margin;
 }
 
+// A pusher must start with its push plate clear of its chair or cart, at the
+// largest size its appearance can give: a plate inside the target at t = 0
+// flings it away while physics settles, before the first frame.
+void check_pusher_start(const ActorSpec& a, const Instance& target, const std::string& where) {
+  const Path2D path = actor_path(a);
+  const double s = a.size * HumanActor::kLargestScale;
+  const Eigen::Vector3d centre = HumanActor::push_plate_centre(s);
+  const Eigen::Vector3d half = HumanActor::push_plate_half(s);
+  Eigen::AlignedBox3d body = target.extent;
+  constexpr double kGap = 0.02;  // m
+  body.min() -= Eigen::Vector3d::Constant(kGap);
+  body.max() += Eigen::Vector3d::Constant(kGap);
+  // Whether the plate overlaps the target with the pusher `back` metres
+  // behind its start.
+  auto overlaps = [&](double back) {
+    const Eigen::Vector2d xy = path.position(a.start_offset) - back * path.tangent(a.start_offset);
+    const Pose target_from_root =
+        target.pose.inverse() * ground_pose(xy, 0.0, path.heading(a.start_offset));
+    Eigen::AlignedBox3d plate;
+    for (int i = 0; i < 8; ++i)
+      plate.extend(target_from_root * Eigen::Vector3d(centre.x() + (i & 1 ? half.x() : -half.x()),
+                                                      centre.y() + (i & 2 ? half.y() : -half.y()),
+                                                      centre.z() + (i & 4 ? half.z() : -half.z())));
+    return plate.intersects(body);
+  };
+  if (!overlaps(0.0)) return;
+  double back = 0.05;
+  while (back < 3.0 && overlaps(back)) back += 0.05;
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.2f", back);
+  fail(where, "actor '" + a.name + "' starts with its hands inside '" + target.name +
+                  "' (at its largest size): start its path at least " + text +
+                  " m further behind it");
+}
+
 }  // namespace
 
 SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
@@ -134,7 +170,7 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
   x << "<statistic extent=\"10\" center=\"0 0 1\"/>\n";
 
   // Textures and materials, in memory.
-  TextureSet textures = make_depot_textures(scenario.seed);
+  TextureSet textures = make_depot_textures(scenario.world_seed());
   x << "<asset>\n";
   for (const auto& t : textures.textures) {
     std::string file = "tex_" + t.name + ".png";
@@ -185,7 +221,7 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
 
   // Static furniture: one fixed body per instance.
   for (const SceneObject& object : layout.objects) {
-    for (const InstanceGeometry& g : build_scene_object(object, scenario.seed)) {
+    for (const InstanceGeometry& g : build_scene_object(object, scenario.world_seed())) {
       Instance& inst = add_instance(g.name, g.class_name, InstanceKind::kStatic,
                                     layout.path + ": object '" + object.name + "'");
       const std::string body = "static/" + g.name;
@@ -205,7 +241,8 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
     if (!is_pushable_actor(a.type)) continue;
     if (!inside_hall(layout, a.position, 0.3))
       fail(where, "actor '" + a.name + "' is outside the hall");
-    InstanceGeometry g = build_pushable(a.type, a.name, derive_seed(scenario.seed, a.appearance));
+    InstanceGeometry g =
+        build_pushable(a.type, a.name, derive_seed(scenario.world_seed(), a.appearance));
     Instance& inst =
         add_instance(a.name, a.type, InstanceKind::kPushable, where + ": actor '" + a.name + "'");
     const std::string body = "pushable/" + a.name;
@@ -236,6 +273,11 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
           seat.seat_height = kChairSeatHeight;
         }
       seat_ptr = &seat;
+    }
+    if (a.action == "push") {
+      for (const Instance& target : model.instances)
+        if (target.kind == InstanceKind::kPushable && target.name == a.target)
+          check_pusher_start(a, target, where);
     }
     std::unique_ptr<Actor> actor = make_actor(a, seat_ptr);
     Instance& inst = add_instance(a.name, actor->class_name(), InstanceKind::kActor,

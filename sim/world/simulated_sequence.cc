@@ -5,7 +5,10 @@
 
 #include "common/error.h"
 #include "common/tum_io.h"
+#include "sim/actors/actor_variation.h"
+#include "sim/scene/obstacles.h"
 #include "sim/scene/scene_layout.h"
+#include "sim/world/camera_clearance.h"
 
 namespace depot::sim {
 
@@ -36,8 +39,14 @@ SimulatedSequence::SimulatedSequence(const Scenario& scenario, GlBackend backend
   stamps_ = frame_timestamps(scenario_);
   if (stamps_.empty()) fail(scenario_.source_path, "no frames to render");
   SceneLayout layout = load_scene_layout(scenario_.scene_path);
-  world_ = std::make_unique<World>(build_scene(layout, classes_, scenario_));
+  // Before anything is built or rendered: the camera keeps its clearance to
+  // the static scene, and the world seed draws the actors' variation.
+  const StaticObstacles obstacles(layout, scenario_.world_seed());
   motion_ = std::make_unique<CameraMotion>(scenario_.motion, scenario_.seed, stamps_.front().first);
+  enforce_camera_clearance(scenario_,
+                           measure_camera_clearance(scenario_, obstacles, *motion_, stamps_));
+  scenario_.actors = vary_actors(scenario_.actors, scenario_.world_seed(), obstacles);
+  world_ = std::make_unique<World>(build_scene(layout, classes_, scenario_));
   if (render)
     renderer_ = std::make_unique<Renderer>(world_->model(), world_->camera_id(), scenario_.camera,
                                            backend, world_->geom_instances());
