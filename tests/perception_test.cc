@@ -98,13 +98,17 @@ TEST(Perception, SelfieSegmentationMasksThePeopleOfTheRealTumFrame) {
 TEST(Perception, SegmenterOnARenderedDataset) {
   REQUIRE_SHARED_DATA();
   const std::string json = temp_path("segmenter") + ".json";
-  const DepotResult r = depot("eval segmenter " + walking_dataset() + " -q --json " + json);
+  // Two seconds of walking, every 6th frame: a few frames at the start alone
+  // may show only a person's edge, which says little about the model.
+  const std::string data = render_small({"depot_walking_xyz", 60, 320, false});
+  const DepotResult r = depot("eval segmenter " + data + " --every 6 -q --json " + json);
   ASSERT_EQ(r.code, 0) << r.output;
   const nlohmann::json d = read_json(json)["dataset"];
-  EXPECT_EQ(d["frames"].size(), 6u);
-  // Measured 0.59 on these frames (0.54 over 300 frames at 640 px): the
-  // selfie model masks some primitive people well and others poorly.
-  EXPECT_GT(d["mean_iou"].get<double>(), 0.3);
+  EXPECT_EQ(d["frames"].size(), 10u);
+  // Measured 0.64 here (seed 2: 0.75; 0.54 over 300 frames at 640 px in an
+  // earlier world): the selfie model masks some primitive people well and
+  // others poorly.
+  EXPECT_GT(d["mean_iou"].get<double>(), 0.4);
   EXPECT_LE(d["mean_iou"].get<double>(), 1.0);
 }
 
