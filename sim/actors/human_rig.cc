@@ -75,9 +75,12 @@ void HumanRig::globals(const HumanPosture& p, std::vector<Eigen::Affine3d>& out)
     turn_bone(sk, pose, drive_[kCalfL + 3 * i], about_y(p.knee[i]));
     // Keep the foot level with the ground (the shin is pitched hip - knee).
     turn_bone(sk, pose, drive_[kFootL + 3 * i], about_y(p.hip[i] - p.knee[i]));
-    turn_bone(sk, pose, drive_[kUpperArmL + 2 * i],
-              about_y(-p.shoulder[i]) * about_x(-side * arm_drop_[i]));
-    turn_bone(sk, pose, drive_[kLowerArmL + 2 * i], about_y(-p.elbow[i]));
+    // The upper arm first drops from the A-pose to hanging straight down,
+    // then swings; the elbow's turn is written in that dropped frame so the
+    // forearm bends forward, not out to the side.
+    const Eigen::Quaterniond drop = about_x(-side * arm_drop_[i]);
+    turn_bone(sk, pose, drive_[kUpperArmL + 2 * i], about_y(-p.shoulder[i]) * drop);
+    turn_bone(sk, pose, drive_[kLowerArmL + 2 * i], drop.inverse() * about_y(-p.elbow[i]) * drop);
   }
   // The pelvis rides on the longer (stance) leg, like the primitive person's,
   // with this model's own leg lengths; seated, the hips rest on the seat.
