@@ -82,12 +82,14 @@ TEST(HumanRig, WalkingActorSwingsItsFeetLikeTheGait) {
     const Pose root = actor.root_pose(t);
     const double lead = (root.inverse() * bodies[body_of(rig, "foot_l")].translation()).x() -
                         (root.inverse() * bodies[body_of(rig, "foot_r")].translation()).x();
-    // Hips 15+ deg apart put the forward leg's foot clearly ahead.
-    if (p.hip[0] - p.hip[1] > deg(15.0)) {
+    // Near the ends of a stride (hips 35+ deg apart, knees nearly straight)
+    // the forward leg's foot is clearly ahead; mid-swing a bent knee can
+    // hold it back, as on the primitive person.
+    if (p.hip[0] - p.hip[1] > deg(35.0)) {
       EXPECT_GT(lead, 0.1) << "t " << t;
       ++left_ahead;
     }
-    if (p.hip[1] - p.hip[0] > deg(15.0)) {
+    if (p.hip[1] - p.hip[0] > deg(35.0)) {
       EXPECT_LT(lead, -0.1) << "t " << t;
       ++right_ahead;
     }
