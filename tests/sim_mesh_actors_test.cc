@@ -12,8 +12,9 @@ namespace {
 
 const std::vector<std::pair<std::string, std::string>> kMesh = {{"actors_style", "mesh"}};
 
-SmallRender mesh_render(int frames, int width, bool ideal, std::optional<uint64_t> seed = {}) {
-  SmallRender r{"depot_walking_xyz", frames, width, ideal, seed};
+SmallRender mesh_render(int frames, int width, bool ideal, std::optional<uint64_t> seed = {},
+                        const std::string& scenario = "depot_walking_xyz") {
+  SmallRender r{scenario, frames, width, ideal, seed};
   r.set = kMesh;
   return r;
 }
@@ -50,18 +51,20 @@ Agreement labels_against_pose(const Dataset& d, size_t frame, int id, const Pose
   return a;
 }
 
-TEST(SimMeshActors, PersonLabelsAgreeWithDepthAndPose) {
-  const Dataset d = read_dataset(render_small(mesh_render(24, 160, true)));
-  int people = 0, checked = 0, pixels = 0;
+struct Checked {
+  int people = 0, frames = 0, pixels = 0;
+};
+Checked check_people(const Dataset& d) {
+  Checked c;
   for (const auto& [id, info] : d.objects) {
     if (info.class_name != "person") continue;
-    ++people;
+    ++c.people;
     for (size_t f = 0; f < d.frames.size(); f += 3) {
       const Pose pose = d.object_poses[f].at(id).pose;
       const Agreement a = labels_against_pose(d, f, id, pose, 0.03);
       if (a.pixels < 100) continue;
-      ++checked;
-      pixels += a.pixels;
+      ++c.frames;
+      c.pixels += a.pixels;
       EXPECT_EQ(a.inside, a.pixels) << info.name << " frame " << f;
       // A wrong pose must not fit: shifted by more than the person's depth.
       Pose shifted = pose;
@@ -70,9 +73,22 @@ TEST(SimMeshActors, PersonLabelsAgreeWithDepthAndPose) {
       EXPECT_LT(off.inside, 0.9 * off.pixels) << info.name << " frame " << f;
     }
   }
-  EXPECT_GE(people, 2);
-  EXPECT_GE(checked, 8) << "the walkers must be seen";
-  EXPECT_GT(pixels, 8 * 1000) << "mesh people must cover a good part of the 160x120 frames";
+  return c;
+}
+
+TEST(SimMeshActors, PersonLabelsAgreeWithDepthAndPose) {
+  const Checked c = check_people(read_dataset(render_small(mesh_render(24, 160, true))));
+  EXPECT_GE(c.people, 2);
+  EXPECT_GE(c.frames, 8) << "the walkers must be seen";
+  EXPECT_GT(c.pixels, 8 * 1000) << "mesh people must cover a good part of the 160x120 frames";
+}
+
+TEST(SimMeshActors, SeatedPersonLabelsAgreeWithDepthAndPose) {
+  const Checked c = check_people(
+      read_dataset(render_small(mesh_render(6, 160, true, {}, "depot_sitting_static"))));
+  EXPECT_GE(c.people, 2);
+  EXPECT_GE(c.frames, 2) << "the sitters must be seen";
+  EXPECT_GT(c.pixels, 2 * 500);
 }
 
 TEST(SimMeshActors, WalkingMeshPersonIsFlaggedMoving) {
