@@ -35,6 +35,12 @@ class Actor {
   virtual Pose root_pose(double t) const = 0;
   // Axis-aligned extent of the actor in its root frame, for label checks.
   virtual Eigen::AlignedBox3d local_extent() const = 0;
+  // World poses of the skinned model's bone bodies (mesh style; they follow
+  // the parts' mocap bodies in the instance). None for primitive actors.
+  virtual void pose_bones(double t, std::vector<Pose>& world_poses) const {
+    (void)t;
+    world_poses.clear();
+  }
 
  protected:
   std::string name_;

@@ -27,16 +27,6 @@ enum Part {
   kPusher
 };
 
-// Joint angles of one instant (rad); index 0 = left, 1 = right.
-struct Posture {
-  double hip[2] = {0, 0};
-  double knee[2] = {0, 0};
-  double shoulder[2] = {0, 0};
-  double elbow[2] = {0, 0};
-  double torso_pitch = 0, torso_yaw = 0;
-  double head_yaw = 0, head_pitch = 0;
-};
-
 // Segment lengths for a 1.75 m person.
 constexpr double kThigh = 0.44, kShin = 0.44, kUpperArm = 0.30, kForearm = 0.28;
 constexpr double kAnkleHeight = 0.07;
@@ -110,14 +100,21 @@ Pose HumanActor::root_pose(double t) const {
 
 Eigen::AlignedBox3d HumanActor::local_extent() const {
   const double s = scale_;
-  return Eigen::AlignedBox3d(Eigen::Vector3d(-0.6, -0.5, 0.0) * s,
-                             Eigen::Vector3d(0.95, 0.5, 2.0) * s);
+  Eigen::AlignedBox3d box(Eigen::Vector3d(-0.6, -0.5, 0.0) * s,
+                          Eigen::Vector3d(0.95, 0.5, 2.0) * s);
+  if (rig_) {
+    // The model's bind bounds (A-pose arms are wider than the primitives'),
+    // plus what the gait adds: a leg or arm swung forward, a seated person's
+    // thighs.
+    const Eigen::AlignedBox3f& b = rig_->model().bounds;
+    box.extend(b.min().cast<double>() - Eigen::Vector3d(0.3, 0.1, 0.0));
+    box.extend(b.max().cast<double>() + Eigen::Vector3d(0.6, 0.1, 0.1));
+  }
+  return box;
 }
 
-void HumanActor::pose_parts(double t, std::vector<Pose>& out) const {
-  const double s = scale_;
-  Posture p;
-  double pelvis_z = 0.0;
+HumanPosture HumanActor::posture(double t) const {
+  HumanPosture p;
   if (mode_ == Mode::kSit) {
     // Seated: thighs forward on the seat, shins down, slow head and arm motions.
     const double w = 2.0 * M_PI;
@@ -131,33 +128,53 @@ void HumanActor::pose_parts(double t, std::vector<Pose>& out) const {
     p.torso_yaw = deg(3.0 * std::sin(w * t / 8.3 + phase_));
     p.head_yaw = deg(14.0 * std::sin(w * t / 5.3 + phase_));
     p.head_pitch = deg(6.0 + 6.0 * std::sin(w * t / 3.7 + phase_));
+    p.seated = true;
+    p.seat_height = seat_.seat_height;
+    return p;
+  }
+  // Walking: phase advances with distance (stride 1.35 m per full cycle).
+  const bool moving = t >= start_time_ && speed_ > 0.0;
+  const double stride = 1.35 * scale_;
+  const double phi =
+      moving ? 2.0 * M_PI * (distance(t) - offset_) / stride + gait_phase_ : gait_phase_;
+  const double amp = moving ? deg(22.0) * std::clamp(speed_ / 1.2, 0.6, 1.3) : 0.0;
+  p.hip[0] = amp * std::sin(phi);
+  p.hip[1] = -amp * std::sin(phi);
+  p.knee[0] = deg(4.0) + (moving ? deg(50.0) * std::pow(std::max(0.0, std::cos(phi)), 2) : 0.0);
+  p.knee[1] = deg(4.0) + (moving ? deg(50.0) * std::pow(std::max(0.0, -std::cos(phi)), 2) : 0.0);
+  if (mode_ == Mode::kPush) {
+    for (int i = 0; i < 2; ++i) {
+      p.shoulder[i] = deg(65.0) + 0.1 * amp * std::sin(phi + i * M_PI);
+      p.elbow[i] = deg(25.0);
+    }
+    p.torso_pitch = deg(12.0);
+  } else {
+    p.shoulder[0] = -0.8 * amp * std::sin(phi);
+    p.shoulder[1] = 0.8 * amp * std::sin(phi);
+    p.elbow[0] = deg(15.0) + 0.5 * std::max(0.0, p.shoulder[0]);
+    p.elbow[1] = deg(15.0) + 0.5 * std::max(0.0, p.shoulder[1]);
+    p.torso_pitch = deg(4.0);
+  }
+  p.torso_yaw = 0.25 * amp * std::sin(phi);
+  p.head_yaw = -p.torso_yaw;
+  return p;
+}
+
+void HumanActor::pose_bones(double t, std::vector<Pose>& world_poses) const {
+  if (!rig_) {
+    world_poses.clear();
+    return;
+  }
+  rig_->pose(posture(t), root_pose(t), world_poses);
+}
+
+void HumanActor::pose_parts(double t, std::vector<Pose>& out) const {
+  const double s = scale_;
+  const HumanPosture p = posture(t);
+  double pelvis_z = 0.0;
+  if (p.seated) {
     pelvis_z = seat_.seat_height + 0.08 * s;
   } else {
-    // Walking: phase advances with distance (stride 1.35 m per full cycle).
-    const bool moving = t >= start_time_ && speed_ > 0.0;
-    const double stride = 1.35 * s;
-    const double phi =
-        moving ? 2.0 * M_PI * (distance(t) - offset_) / stride + gait_phase_ : gait_phase_;
-    const double amp = moving ? deg(22.0) * std::clamp(speed_ / 1.2, 0.6, 1.3) : 0.0;
-    p.hip[0] = amp * std::sin(phi);
-    p.hip[1] = -amp * std::sin(phi);
-    p.knee[0] = deg(4.0) + (moving ? deg(50.0) * std::pow(std::max(0.0, std::cos(phi)), 2) : 0.0);
-    p.knee[1] = deg(4.0) + (moving ? deg(50.0) * std::pow(std::max(0.0, -std::cos(phi)), 2) : 0.0);
-    if (mode_ == Mode::kPush) {
-      for (int i = 0; i < 2; ++i) {
-        p.shoulder[i] = deg(65.0) + 0.1 * amp * std::sin(phi + i * M_PI);
-        p.elbow[i] = deg(25.0);
-      }
-      p.torso_pitch = deg(12.0);
-    } else {
-      p.shoulder[0] = -0.8 * amp * std::sin(phi);
-      p.shoulder[1] = 0.8 * amp * std::sin(phi);
-      p.elbow[0] = deg(15.0) + 0.5 * std::max(0.0, p.shoulder[0]);
-      p.elbow[1] = deg(15.0) + 0.5 * std::max(0.0, p.shoulder[1]);
-      p.torso_pitch = deg(4.0);
-    }
-    p.torso_yaw = 0.25 * amp * std::sin(phi);
-    p.head_yaw = -p.torso_yaw;
     // The pelvis rides on the longer (stance) leg: its height bobs naturally.
     double reach = 0.0;
     for (int i = 0; i < 2; ++i)

@@ -1,5 +1,8 @@
 #pragma once
+#include <memory>
+
 #include "sim/actors/actor.h"
+#include "sim/actors/human_rig.h"
 #include "sim/actors/path.h"
 
 namespace depot::sim {
@@ -14,6 +17,16 @@ class HumanActor : public Actor {
   void pose_parts(double t, std::vector<Pose>& world_poses) const override;
   Pose root_pose(double t) const override;
   Eigen::AlignedBox3d local_extent() const override;
+  void pose_bones(double t, std::vector<Pose>& world_poses) const override;
+
+  // Draws this person as a skinned catalogue model instead of primitives:
+  // the primitive parts stay (as geom-less mocap bodies, and the pusher
+  // plate) and the rig's bones follow the same gait.
+  void use_mesh(std::shared_ptr<const HumanRig> rig) { rig_ = std::move(rig); }
+  const HumanRig* rig() const { return rig_.get(); }
+
+  // The gait at time t (what both the primitives and the rig follow).
+  HumanPosture posture(double t) const;
 
   // The invisible push plate in the root frame of a person of `scale`:
   // centre and half extents.
@@ -35,6 +48,7 @@ class HumanActor : public Actor {
   double phase_ = 0.0;       // per-person offset of idle motions
   double gait_phase_ = 0.0;  // rad, walking cycle at the start
   SeatPose seat_;
+  std::shared_ptr<const HumanRig> rig_;
 };
 
 }  // namespace depot::sim

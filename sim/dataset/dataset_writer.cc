@@ -216,6 +216,7 @@ void DatasetWriter::write_text_files() {
                          {"seed", scenario_.seed},
                          {"frames", frames_},
                          {"dynamic_load", scenario_.dynamic_load},
+                         {"actors_style", scenario_.actors_style},
                          {"sensor", s.ideal ? "ideal" : "kinect"},
                          {"motion", scenario_.motion.type}};
   info["world_seed"] = scenario_.world_seed();

@@ -54,6 +54,7 @@ TruthSummary export_truth(Scenario scenario, const RenderRequest& request) {
                          {"seed", scenario.seed},
                          {"frames", sequence.frame_count()},
                          {"dynamic_load", scenario.dynamic_load},
+                         {"actors_style", scenario.actors_style},
                          {"motion", scenario.motion.type}};
   info["world_seed"] = scenario.world_seed();
   write_text_file_atomic((root / "info.json").string(), info.dump(1) + "\n");

@@ -14,8 +14,12 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 Renderer::Renderer(const mjModel* model, int camera_id, const CameraIntrinsics& intrinsics,
-                   GlBackend backend, std::vector<uint16_t> geom_instance)
-    : model_(model), intrinsics_(intrinsics), geom_instance_(std::move(geom_instance)) {
+                   GlBackend backend, std::vector<uint16_t> geom_instance,
+                   std::vector<uint16_t> skin_instance)
+    : model_(model),
+      intrinsics_(intrinsics),
+      geom_instance_(std::move(geom_instance)),
+      skin_instance_(std::move(skin_instance)) {
   if (model->vis.global.offwidth < intrinsics.width ||
       model->vis.global.offheight < intrinsics.height)
     fail("renderer", "offscreen buffer smaller than the image");
@@ -105,6 +109,10 @@ void Renderer::render(mjData* data, RenderedFrame& out, RenderTimings* timings) 
         if (g.objtype == mjOBJ_GEOM && g.objid >= 0 &&
             g.objid < static_cast<int>(geom_instance_.size()))
           id = geom_instance_[g.objid];
+        // Skinned actors: MuJoCo 2.2 draws a skin as its own object type.
+        else if (g.objtype == mjOBJ_SKIN && g.objid >= 0 &&
+                 g.objid < static_cast<int>(skin_instance_.size()))
+          id = skin_instance_[g.objid];
       }
       inst[x] = id;
       if (id == 0) depth[x] = 0.0f;  // nothing there (never inside a closed hall)

@@ -22,9 +22,11 @@ struct RenderTimings {
 
 class Renderer {
  public:
-  // `geom_instance[g]` is the instance id of geom g.
+  // `geom_instance[g]` is the instance id of geom g, `skin_instance[s]` that
+  // of skin s (empty when the model has no skins).
   Renderer(const mjModel* model, int camera_id, const CameraIntrinsics& intrinsics,
-           GlBackend backend, std::vector<uint16_t> geom_instance);
+           GlBackend backend, std::vector<uint16_t> geom_instance,
+           std::vector<uint16_t> skin_instance = {});
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
@@ -39,6 +41,7 @@ class Renderer {
   CameraIntrinsics intrinsics_;
   std::unique_ptr<GlContext> gl_;
   std::vector<uint16_t> geom_instance_;
+  std::vector<uint16_t> skin_instance_;
   mjvScene scene_;
   mjvCamera camera_;
   mjvOption option_;

@@ -96,6 +96,11 @@ struct Scenario {
   int frames = 300;
   bool shadows = false;
   double dynamic_load = 1.0;
+  // How living actors are drawn: "primitive" (rigid boxes and capsules) or
+  // "mesh" (skinned catalogue models, assets/catalog.yaml; people only so far,
+  // animals stay primitive). Primitive by default: the shipped scenarios'
+  // regression bounds were measured with primitives.
+  std::string actors_style = "primitive";
   CameraIntrinsics camera;
   CameraMotionSpec motion;
   TimestampSpec timestamps;

@@ -42,5 +42,15 @@ TEST(ScenarioOverrides, AreValidatedLikeTheFile) {
   EXPECT_NE(error_of([] { load_scenario(kWalking, {{"sensor.rgb_noise", "loud"}}); }), "");
 }
 
+TEST(ScenarioActorsStyle, DefaultsToPrimitiveAndTakesMesh) {
+  EXPECT_EQ(load_scenario(kWalking).actors_style, "primitive");
+  EXPECT_EQ(load_scenario(kWalking, {{"actors_style", "mesh"}}).actors_style, "mesh");
+  const std::string error = error_of([] { load_scenario(kWalking, {{"actors_style", "clay"}}); });
+  EXPECT_NE(error.find("depot_walking_xyz.yaml"), std::string::npos) << error;
+  EXPECT_NE(error.find("unknown actors_style 'clay' (expected primitive or mesh)"),
+            std::string::npos)
+      << error;
+}
+
 }  // namespace
 }  // namespace depot::sim

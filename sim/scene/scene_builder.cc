@@ -6,12 +6,18 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include <map>
+#include <memory>
+
+#include "common/config_path.h"
 #include "common/error.h"
 #include "common/rng.h"
 #include "sim/actors/human.h"
 #include "sim/actors/limb.h"
+#include "sim/assets/asset_catalog.h"
 #include "sim/scene/depot_objects.h"
 #include "sim/scene/geometry.h"
+#include "sim/scene/skinned_actor_xml.h"
 #include "sim/scene/textures.h"
 
 namespace depot::sim {
@@ -154,6 +160,46 @@ void check_pusher_start(const ActorSpec& a, const Instance& target, const std::s
                   " m further behind it");
 }
 
+// Person variants of the asset catalogue, each loaded and encoded once per
+// scene however many actors wear it.
+class PersonVariants {
+ public:
+  explicit PersonVariants(const ClassTable& classes) : classes_(classes) {}
+
+  struct Variant {
+    std::string prefix;
+    std::shared_ptr<const HumanRig> rig;
+    SkinMaterials materials;
+  };
+
+  // The variant an actor wears: fixed by its appearance seed, so the same
+  // scenario and seed always dress the same people.
+  const Variant& pick(uint64_t appearance) {
+    if (!catalog_) {
+      catalog_ = std::make_unique<AssetCatalog>(
+          load_asset_catalog(project_file("assets/catalog.yaml"), classes_));
+      people_ = catalog_assets_of_class(*catalog_, "person");
+      if (people_.empty()) fail(catalog_->path, "no asset plays class 'person'");
+    }
+    const size_t i = Rng(derive_seed(appearance, 0x6d657368)).below(people_.size());
+    auto it = variants_.find(i);
+    if (it != variants_.end()) return it->second;
+    Variant v;
+    v.prefix = "person_" + people_[i]->name;
+    v.rig = std::make_shared<const HumanRig>(
+        std::make_shared<const AssetModel>(load_catalog_asset(*catalog_, *people_[i])));
+    v.materials = encode_skin_materials(v.rig->model(), v.prefix);
+    return variants_.emplace(i, std::move(v)).first->second;
+  }
+  const std::map<size_t, Variant>& used() const { return variants_; }
+
+ private:
+  const ClassTable& classes_;
+  std::unique_ptr<AssetCatalog> catalog_;
+  std::vector<const CatalogAsset*> people_;
+  std::map<size_t, Variant> variants_;
+};
+
 }  // namespace
 
 SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
@@ -258,6 +304,9 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
   // Animated actors: one mocap body per part.
   std::vector<std::pair<std::string, std::string>> plate_welds;  // plate body, mocap target
   std::vector<std::string> pending_plates;
+  const bool mesh_style = scenario.actors_style == "mesh";
+  PersonVariants variants(classes);
+  std::string skins;  // <skin> elements, written in a second <asset> section
   for (const ActorSpec& a : scenario.actors) {
     if (!is_living_actor(a.type)) continue;
     for (const auto& p : a.path)
@@ -280,6 +329,12 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
           check_pusher_start(a, target, where);
     }
     std::unique_ptr<Actor> actor = make_actor(a, seat_ptr);
+    const PersonVariants::Variant* variant = nullptr;
+    if (mesh_style)
+      if (auto* human = dynamic_cast<HumanActor*>(actor.get())) {
+        variant = &variants.pick(a.appearance);
+        human->use_mesh(variant->rig);
+      }
     Instance& inst = add_instance(a.name, actor->class_name(), InstanceKind::kActor,
                                   where + ": actor '" + a.name + "'");
     inst.actor = static_cast<int>(model.actors.size());
@@ -299,7 +354,8 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
       g.conaffinity = 0;
       x << "<body name=\"" << body << "\" mocap=\"true\" pos=\"" << vec(poses[i].translation())
         << "\" quat=\"" << quat(poses[i].linear()) << "\">\n";
-      if (!part.pusher) write_geom(x, g);
+      // A skinned person keeps its parts' mocap bodies without geoms.
+      if (!part.pusher && !variant) write_geom(x, g);
       x << "</body>\n";
       if (part.pusher) {
         // The push plate is a free body welded to its mocap target: it has a
@@ -319,6 +375,15 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
     }
     for (auto& plate : pending_plates) inst.bodies.push_back(plate);
     pending_plates.clear();
+    if (variant) {
+      // Bone bodies come after the parts: World poses them in this order.
+      actor->pose_bones(0.0, poses);
+      std::vector<std::string> bones;
+      x << bone_bodies_xml(*variant->rig, poses, "actor/" + a.name + "/bone", bones);
+      skins += skins_xml(*variant->rig, variant->materials.material_names, bones, "actor/" + a.name,
+                         inst.skins);
+      for (auto& b : bones) inst.bodies.push_back(b);
+    }
     model.actors.push_back(std::move(actor));
   }
 
@@ -327,6 +392,14 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
   x << "<body name=\"" << model.camera_body << "\" mocap=\"true\" pos=\"0 0 1\">\n<camera name=\""
     << model.camera_name << "\" fovy=\"" << num(fovy) << "\"/>\n</body>\n";
   x << "</worldbody>\n";
+  if (!skins.empty()) {
+    x << "<asset>\n";
+    for (const auto& [index, v] : variants.used()) {
+      x << v.materials.asset_xml;
+      for (const auto& f : v.materials.files) model.assets.push_back(f);
+    }
+    x << skins << "</asset>\n";
+  }
   if (!plate_welds.empty()) {
     x << "<equality>\n";
     for (const auto& [plate, target] : plate_welds)

@@ -28,6 +28,7 @@ struct Instance {
   Pose pose = Pose::Identity();     // world pose (initial, for moving ones)
   Eigen::AlignedBox3d extent;       // bounds in the instance's own frame
   std::vector<std::string> bodies;  // MuJoCo body names that belong to it
+  std::vector<std::string> skins;   // MuJoCo skins drawn for it (mesh-style actors)
   int actor = -1;                   // index into SceneModel::actors
 };
 

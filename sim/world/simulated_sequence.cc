@@ -48,8 +48,9 @@ SimulatedSequence::SimulatedSequence(const Scenario& scenario, GlBackend backend
   scenario_.actors = vary_actors(scenario_.actors, scenario_.world_seed(), obstacles);
   world_ = std::make_unique<World>(build_scene(layout, classes_, scenario_));
   if (render)
-    renderer_ = std::make_unique<Renderer>(world_->model(), world_->camera_id(), scenario_.camera,
-                                           backend, world_->geom_instances());
+    renderer_ =
+        std::make_unique<Renderer>(world_->model(), world_->camera_id(), scenario_.camera, backend,
+                                   world_->geom_instances(), world_->skin_instances());
   for (const Instance& inst : world_->instances())
     if (inst.kind == InstanceKind::kPushable || inst.kind == InstanceKind::kActor)
       tracked_.push_back(&inst);

@@ -111,11 +111,27 @@ std::vector<uint16_t> World::geom_instances() const {
   return out;
 }
 
+std::vector<uint16_t> World::skin_instances() const {
+  std::vector<uint16_t> out(model_->nskin, 0);
+  for (const Instance& inst : scene_.instances)
+    for (const auto& name : inst.skins) {
+      const int s = mj_name2id(model_, mjOBJ_SKIN, name.c_str());
+      if (s < 0) fail("scene", "skin '" + name + "' missing from compiled model");
+      out[s] = inst.id;
+    }
+  return out;
+}
+
 void World::pose_actors(double t) {
   actor_time_ = t;
   for (size_t a = 0; a < scene_.actors.size(); ++a) {
     scene_.actors[a]->pose_parts(t, scratch_);
     for (size_t p = 0; p < scratch_.size(); ++p) set_mocap(data_, actor_mocap_[a][p], scratch_[p]);
+    // A skinned actor's bone bodies follow its parts' (scene_builder order).
+    const size_t first_bone = scratch_.size();
+    scene_.actors[a]->pose_bones(t, scratch_);
+    for (size_t b = 0; b < scratch_.size(); ++b)
+      set_mocap(data_, actor_mocap_[a][first_bone + b], scratch_[b]);
   }
 }
 

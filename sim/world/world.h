@@ -33,6 +33,9 @@ class World {
 
   // Instance id of every geom (for the segmentation pass).
   std::vector<uint16_t> geom_instances() const;
+  // Instance id of every skin (mesh-style actors; MuJoCo draws skins as
+  // mjOBJ_SKIN objects, not geoms).
+  std::vector<uint16_t> skin_instances() const;
   // The instance's reference pose now: actor root, pushable body, or fixed pose.
   Pose instance_pose(const Instance& instance) const;
   // Poses of every body of an instance now (articulated actors have many).

@@ -24,7 +24,9 @@ DepotResult depot(const std::string& args) {
 }
 
 std::string render_small(const SmallRender& r) {
-  sim::Scenario scenario = sim::load_scenario(scenario_path(r.scenario));
+  std::vector<YamlOverride> overrides;
+  for (const auto& [key, value] : r.set) overrides.push_back({key, value});
+  sim::Scenario scenario = sim::load_scenario(scenario_path(r.scenario), overrides);
   sim::RenderRequest request;
   request.dataset.output = temp_path(scenario.name);
   request.dataset.yolo_export = r.yolo;

@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace depot::test {
 
@@ -21,6 +23,8 @@ struct SmallRender {
   bool ideal;
   std::optional<uint64_t> seed;
   bool yolo;
+  // Scenario overrides, as `depot sim render --set key=value` gives them.
+  std::vector<std::pair<std::string, std::string>> set;
 };
 
 // Renders and returns the dataset folder.

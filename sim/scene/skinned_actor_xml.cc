@@ -1,0 +1,125 @@
+#include "sim/scene/skinned_actor_xml.h"
+
+#include <cstdio>
+#include <sstream>
+
+#include "sim/assets/mujoco_mesh.h"
+#include "sim/assets/skinning.h"
+
+namespace depot::sim {
+namespace {
+
+// Compact numbers: a person's skins are ~18k vertices, written as text.
+void put(std::string& out, double v) {
+  char buf[32];
+  const int n = std::snprintf(buf, sizeof(buf), "%.6g ", std::abs(v) < 1e-12 ? 0.0 : v);
+  out.append(buf, static_cast<size_t>(n));
+}
+
+std::string trimmed(std::string s) {
+  if (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+// A bone's rigid pose from a global transform (mocap bodies cannot scale).
+Pose rigid(const Eigen::Affine3d& a) {
+  Pose p = Pose::Identity();
+  p.linear() = Eigen::Quaterniond(a.linear()).normalized().toRotationMatrix();
+  p.translation() = a.translation();
+  return p;
+}
+
+}  // namespace
+
+SkinMaterials encode_skin_materials(const AssetModel& model, const std::string& prefix) {
+  MujocoAssetSet set = encode_for_mujoco(model, prefix);
+  SkinMaterials out;
+  out.material_names = set.material_names;
+  // Skins carry their own vertices: leave the bind meshes out, MuJoCo would
+  // otherwise compile each of them (~0.28 s per person variant).
+  for (auto& [name, bytes] : set.files)
+    if (name.size() < 4 || name.compare(name.size() - 4, 4, ".msh") != 0)
+      out.files.emplace_back(name, std::move(bytes));
+  std::istringstream lines(set.asset_xml);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("<mesh ", 0) != 0) out.asset_xml += line + "\n";
+  return out;
+}
+
+std::string bone_bodies_xml(const HumanRig& rig, const std::vector<Pose>& poses,
+                            const std::string& prefix, std::vector<std::string>& bodies) {
+  std::string x;
+  const Skeleton& sk = rig.model().skeleton;
+  for (size_t i = 0; i < rig.body_bones().size(); ++i) {
+    const std::string name = prefix + "/" + sk.bones[rig.body_bones()[i]].name;
+    bodies.push_back(name);
+    const Eigen::Quaterniond q(poses[i].linear());
+    std::string pos, quat;
+    for (int k = 0; k < 3; ++k) put(pos, poses[i].translation()[k]);
+    for (double v : {q.w(), q.x(), q.y(), q.z()}) put(quat, v);
+    x += "<body name=\"" + name + "\" mocap=\"true\" pos=\"" + trimmed(pos) + "\" quat=\"" +
+         trimmed(quat) + "\"/>\n";
+  }
+  return x;
+}
+
+std::string skins_xml(const HumanRig& rig, const std::vector<std::string>& material_names,
+                      const std::vector<std::string>& bodies, const std::string& prefix,
+                      std::vector<std::string>& skins) {
+  const AssetModel& model = rig.model();
+  const Skeleton& sk = model.skeleton;
+  // The skin's bind pose is the bones' rest globals: there the skinning
+  // matrices are identity and the vertices are the file's bind mesh.
+  std::vector<Eigen::Affine3d> rest;
+  bone_globals(sk, rest_pose(sk), rest);
+  std::vector<int> body_of_bone(sk.bones.size(), -1);
+  for (size_t i = 0; i < rig.body_bones().size(); ++i)
+    body_of_bone[rig.body_bones()[i]] = static_cast<int>(i);
+
+  std::string x;
+  for (size_t m = 0; m < model.meshes.size(); ++m) {
+    const AssetMesh& mesh = model.meshes[m];
+    if (mesh.triangles.empty() || mesh.bones.size() != mesh.positions.size()) continue;
+    const std::string name = prefix + "/skin" + std::to_string(m);
+    skins.push_back(name);
+    std::string vertex, texcoord, face;
+    for (const auto& v : mesh.positions)
+      for (int k = 0; k < 3; ++k) put(vertex, v[k]);
+    for (const auto& uv : mesh.uvs)
+      for (int k = 0; k < 2; ++k) put(texcoord, uv[k]);
+    for (const auto& t : mesh.triangles)
+      for (int k = 0; k < 3; ++k) face += std::to_string(t[k]) + " ";
+    x += "<skin name=\"" + name + "\"";
+    if (!material_names[m].empty()) x += " material=\"" + material_names[m] + "\"";
+    x += " vertex=\"" + trimmed(vertex) + "\"";
+    if (!mesh.uvs.empty()) x += " texcoord=\"" + trimmed(texcoord) + "\"";
+    x += " face=\"" + trimmed(face) + "\">\n";
+    // Per bone: the vertices it moves and their weights.
+    std::vector<std::string> ids(rig.body_bones().size()), weights(rig.body_bones().size());
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+      const VertexBones& vb = mesh.bones[v];
+      for (int k = 0; k < 4; ++k) {
+        if (vb.bone[k] < 0 || vb.weight[k] <= 0.0f) continue;
+        const int body = body_of_bone[vb.bone[k]];
+        if (body < 0) continue;
+        ids[body] += std::to_string(v) + " ";
+        put(weights[body], vb.weight[k]);
+      }
+    }
+    for (size_t b = 0; b < ids.size(); ++b) {
+      if (ids[b].empty()) continue;  // MuJoCo wants vertices on every bone of a skin
+      const Pose bind = rigid(rest[rig.body_bones()[b]]);
+      const Eigen::Quaterniond q(bind.linear());
+      std::string pos, quat;
+      for (int k = 0; k < 3; ++k) put(pos, bind.translation()[k]);
+      for (double v : {q.w(), q.x(), q.y(), q.z()}) put(quat, v);
+      x += "<bone body=\"" + bodies[b] + "\" bindpos=\"" + trimmed(pos) + "\" bindquat=\"" +
+           trimmed(quat) + "\" vertid=\"" + trimmed(ids[b]) + "\" vertweight=\"" +
+           trimmed(weights[b]) + "\"/>\n";
+    }
+    x += "</skin>\n";
+  }
+  return x;
+}
+
+}  // namespace depot::sim
