@@ -15,12 +15,6 @@ namespace fs = std::filesystem;
 namespace depot::test {
 namespace {
 
-std::string write_yaml(const std::string& tag, const std::string& text) {
-  std::string path = temp_path(tag) + ".yaml";
-  std::ofstream(path) << text;
-  return path;
-}
-
 std::string scene_lines() {
   return std::string("scene: ") + DEPOT_SOURCE_DIR +
          "/scenes/depot.yaml\nclasses: " + DEPOT_SOURCE_DIR + "/scenes/classes.yaml\n";

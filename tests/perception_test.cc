@@ -122,27 +122,21 @@ void expect_error(const std::string& args, const std::string& needle) {
   EXPECT_FALSE(fs::exists(json)) << "nothing written on failure";
 }
 
-std::string write_file(const std::string& tag, const std::string& text) {
-  const std::string path = temp_path(tag) + ".yaml";
-  std::ofstream(path) << text;
-  return path;
-}
-
 TEST(Perception, BadInputIsOneErrorLine) {
   REQUIRE_SHARED_DATA();
   const std::string missing = temp_path("missing") + ".onnx";
-  const std::string detector_yaml = write_file("detector", "type: fastestdet\nmodel: " + missing +
+  const std::string detector_yaml = write_yaml("detector", "type: fastestdet\nmodel: " + missing +
                                                                "\nnames: " + DEPOT_SHARED_DATA +
                                                                "/models/fastestdet/coco.names\n");
   expect_error("eval detector --images " + kLabels + " --detector fastestdet --detector-config " +
                    detector_yaml,
                missing + ": model file not found");
-  const std::string segmenter_yaml = write_file("segmenter", "model: " + missing + "\n");
+  const std::string segmenter_yaml = write_yaml("segmenter", "model: " + missing + "\n");
   expect_error("eval segmenter --images " + kLabels + " --segmenter-config " + segmenter_yaml,
                missing + ": model file not found");
-  const std::string corrupt = write_file("labels", "classes: [person]\nimages:\n  a.png: [\n");
+  const std::string corrupt = write_yaml("labels", "classes: [person]\nimages:\n  a.png: [\n");
   expect_error("eval detector --images " + corrupt, corrupt + ":4: YAML syntax error");
-  const std::string typo = write_file("map", "map:\n  person: persn\n");
+  const std::string typo = write_yaml("map", "map:\n  person: persn\n");
   expect_error("eval detector --images " + kLabels + " --class-map " + typo,
                typo + ":2: class 'persn' is not a class of " + kLabels);
   expect_error("eval detector " + walking_dataset() + " --class-map " + typo,

@@ -25,12 +25,6 @@ namespace fs = std::filesystem;
 namespace depot::test {
 namespace {
 
-std::string write_yaml(const std::string& tag, const std::string& text) {
-  std::string path = temp_path(tag) + ".yaml";
-  std::ofstream(path) << text;
-  return path;
-}
-
 // A robot camera driving east at 0.5 m height along y = -2.4, through the
 // crate stack 'crates_e' (scenes/depot.yaml: centre (8.2, -2.4), 2 x 3 crates,
 // x 7.6..8.8), then out and back.

@@ -143,6 +143,12 @@ std::string temp_path(const std::string& tag) {
   return (test_root() / (tag + "_" + std::to_string(counter++))).string();
 }
 
+std::string write_yaml(const std::string& tag, const std::string& text) {
+  const std::string path = temp_path(tag) + ".yaml";
+  std::ofstream(path) << text;
+  return path;
+}
+
 int run_command(const std::string& command, std::string* output) {
   std::string full = command + " 2>&1";
   FILE* pipe = popen(full.c_str(), "r");

@@ -52,6 +52,9 @@ Dataset read_dataset(const std::string& root);
 // folder (removed when the process exits).
 std::string temp_path(const std::string& tag);
 
+// Writes `text` to a new temp_path(tag) + ".yaml" and returns its path.
+std::string write_yaml(const std::string& tag, const std::string& text);
+
 // Runs a shell command, returning exit code; stdout/stderr captured.
 int run_command(const std::string& command, std::string* output);
 
