@@ -10,9 +10,13 @@ Pose rigid_bone_pose(const Eigen::Affine3d& global) {
 }
 
 void world_bone_poses(const std::vector<Eigen::Affine3d>& globals, const std::vector<int>& bones,
-                      const Pose& root, std::vector<Pose>& world) {
+                      const Pose& root, double scale, std::vector<Pose>& world) {
   world.resize(bones.size());
-  for (size_t i = 0; i < bones.size(); ++i) world[i] = root * rigid_bone_pose(globals[bones[i]]);
+  for (size_t i = 0; i < bones.size(); ++i) {
+    Pose local = rigid_bone_pose(globals[bones[i]]);
+    local.translation() *= scale;
+    world[i] = root * local;
+  }
 }
 
 }  // namespace depot::sim

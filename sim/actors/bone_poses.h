@@ -14,8 +14,9 @@ namespace depot::sim {
 Pose rigid_bone_pose(const Eigen::Affine3d& global);
 
 // World poses of `bones` (indices into `globals`) with the model frame at
-// `root`.
+// `root`, the model scaled by `scale` about its origin (the skin's vertices
+// and bind poses are scaled alike, skinned_actor_xml.h).
 void world_bone_poses(const std::vector<Eigen::Affine3d>& globals, const std::vector<int>& bones,
-                      const Pose& root, std::vector<Pose>& world);
+                      const Pose& root, double scale, std::vector<Pose>& world);
 
 }  // namespace depot::sim

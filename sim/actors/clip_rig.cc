@@ -93,10 +93,11 @@ void ClipRig::globals(const AnimalMotion& m, std::vector<Eigen::Affine3d>& out) 
   bone_globals(sk, pose, out);
 }
 
-void ClipRig::pose(const AnimalMotion& m, const Pose& root, std::vector<Pose>& world) const {
+void ClipRig::pose(const AnimalMotion& m, const Pose& root, double scale,
+                   std::vector<Pose>& world) const {
   std::vector<Eigen::Affine3d> g;
   globals(m, g);
-  world_bone_poses(g, body_bones_, root, world);
+  world_bone_poses(g, body_bones_, root, scale, world);
 }
 
 }  // namespace depot::sim

@@ -41,8 +41,9 @@ class ClipRig {
 
   // Skeleton globals (model frame) for a motion.
   void globals(const AnimalMotion& m, std::vector<Eigen::Affine3d>& out) const;
-  // World poses of body_bones() with the model frame at `root`.
-  void pose(const AnimalMotion& m, const Pose& root, std::vector<Pose>& world) const;
+  // World poses of body_bones() with the model frame at `root`, the model
+  // scaled by `scale`.
+  void pose(const AnimalMotion& m, const Pose& root, double scale, std::vector<Pose>& world) const;
 
  private:
   struct Leg {

@@ -109,10 +109,13 @@ void HumanRig::globals(const HumanPosture& p, std::vector<Eigen::Affine3d>& out)
   bone_globals(sk, pose, out);
 }
 
-void HumanRig::pose(const HumanPosture& p, const Pose& root, std::vector<Pose>& world) const {
+void HumanRig::pose(const HumanPosture& p, const Pose& root, double scale,
+                    std::vector<Pose>& world) const {
   std::vector<Eigen::Affine3d> g;
-  globals(p, g);
-  world_bone_poses(g, body_bones_, root, world);
+  HumanPosture scaled = p;
+  scaled.seat_height = p.seat_height / scale;  // in the unscaled model's metres
+  globals(scaled, g);
+  world_bone_poses(g, body_bones_, root, scale, world);
 }
 
 }  // namespace depot::sim

@@ -393,8 +393,8 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
       std::vector<std::string> bones;
       x << bone_bodies_xml(variant->model(), variant->body_bones(), poses,
                            "actor/" + a.name + "/bone", bones);
-      skins += skins_xml(variant->model(), variant->body_bones(), variant->materials.material_names,
-                         bones, "actor/" + a.name, inst.skins);
+      skins += skins_xml(variant->model(), variant->body_bones(), actor->mesh_scale(),
+                         variant->materials.material_names, bones, "actor/" + a.name, inst.skins);
       for (auto& b : bones) inst.bodies.push_back(b);
     }
     model.actors.push_back(std::move(actor));

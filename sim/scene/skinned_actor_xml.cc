@@ -57,7 +57,7 @@ std::string bone_bodies_xml(const AssetModel& model, const std::vector<int>& bod
   return x;
 }
 
-std::string skins_xml(const AssetModel& model, const std::vector<int>& body_bones,
+std::string skins_xml(const AssetModel& model, const std::vector<int>& body_bones, double scale,
                       const std::vector<std::string>& material_names,
                       const std::vector<std::string>& bodies, const std::string& prefix,
                       std::vector<std::string>& skins) {
@@ -77,7 +77,7 @@ std::string skins_xml(const AssetModel& model, const std::vector<int>& body_bone
     skins.push_back(name);
     std::string vertex, texcoord, face;
     for (const auto& v : mesh.positions)
-      for (int k = 0; k < 3; ++k) put(vertex, v[k]);
+      for (int k = 0; k < 3; ++k) put(vertex, scale * v[k]);
     for (const auto& uv : mesh.uvs)
       for (int k = 0; k < 2; ++k) put(texcoord, uv[k]);
     for (const auto& t : mesh.triangles)
@@ -104,7 +104,7 @@ std::string skins_xml(const AssetModel& model, const std::vector<int>& body_bone
       const Pose bind = rigid_bone_pose(rest[body_bones[b]]);
       const Eigen::Quaterniond q(bind.linear());
       std::string pos, quat;
-      for (int k = 0; k < 3; ++k) put(pos, bind.translation()[k]);
+      for (int k = 0; k < 3; ++k) put(pos, scale * bind.translation()[k]);
       for (double v : {q.w(), q.x(), q.y(), q.z()}) put(quat, v);
       x += "<bone body=\"" + bodies[b] + "\" bindpos=\"" + trimmed(pos) + "\" bindquat=\"" +
            trimmed(quat) + "\" vertid=\"" + trimmed(ids[b]) + "\" vertweight=\"" +

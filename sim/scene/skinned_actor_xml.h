@@ -34,7 +34,9 @@ std::string bone_bodies_xml(const AssetModel& model, const std::vector<int>& bod
 // <skin> elements (for <asset>), one per mesh with triangles, named
 // `prefix`/skin<i>; `bodies` as bone_bodies_xml returned them. Skin names
 // go to `skins`.
-std::string skins_xml(const AssetModel& model, const std::vector<int>& body_bones,
+// The skin is the model scaled by `scale` about its origin (world_bone_poses
+// with the same scale poses its bodies).
+std::string skins_xml(const AssetModel& model, const std::vector<int>& body_bones, double scale,
                       const std::vector<std::string>& material_names,
                       const std::vector<std::string>& bodies, const std::string& prefix,
                       std::vector<std::string>& skins);
