@@ -165,7 +165,8 @@ void check_pusher_start(const ActorSpec& a, const Instance& target, const std::s
 // and encoded once per scene however many actors wear it.
 class MeshVariants {
  public:
-  explicit MeshVariants(const ClassTable& classes) : classes_(classes) {}
+  MeshVariants(const ClassTable& classes, std::string catalog_path)
+      : classes_(classes), catalog_path_(std::move(catalog_path)) {}
 
   struct Variant {
     std::string prefix;
@@ -183,8 +184,7 @@ class MeshVariants {
   // seed always dress the same actors.
   const Variant* pick(const std::string& class_name, uint64_t appearance) {
     if (!catalog_)
-      catalog_ = std::make_unique<AssetCatalog>(
-          load_asset_catalog(project_file("assets/catalog.yaml"), classes_));
+      catalog_ = std::make_unique<AssetCatalog>(load_asset_catalog(catalog_path_, classes_));
     const std::vector<const CatalogAsset*> assets = catalog_assets_of_class(*catalog_, class_name);
     if (assets.empty()) return nullptr;
     const CatalogAsset& entry =
@@ -206,6 +206,7 @@ class MeshVariants {
 
  private:
   const ClassTable& classes_;
+  std::string catalog_path_;
   std::unique_ptr<AssetCatalog> catalog_;
   std::map<std::string, Variant> variants_;
 };
@@ -315,7 +316,7 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
   std::vector<std::pair<std::string, std::string>> plate_welds;  // plate body, mocap target
   std::vector<std::string> pending_plates;
   const bool mesh_style = scenario.actors_style == "mesh";
-  MeshVariants variants(classes);
+  MeshVariants variants(classes, scenario.asset_catalog_path);
   std::string skins;  // <skin> elements, written in a second <asset> section
   for (const ActorSpec& a : scenario.actors) {
     if (!is_living_actor(a.type)) continue;
