@@ -169,6 +169,7 @@ class MeshVariants {
       : classes_(classes), catalog_path_(std::move(catalog_path)) {}
 
   struct Variant {
+    std::string asset;  // the catalogue entry
     std::string prefix;
     std::shared_ptr<const HumanRig> human;  // a person's rig, or
     std::shared_ptr<const ClipRig> animal;  // an animal's
@@ -180,18 +181,28 @@ class MeshVariants {
   };
 
   // The variant an actor of `class_name` wears, or nullptr when no asset
-  // plays that class: fixed by its appearance seed, so the same scenario and
-  // seed always dress the same actors.
+  // plays that class: drawn by its appearance seed, moved on to the next
+  // variant no actor of the scene wears yet while there is one (so three
+  // people are three different people). Actors are dressed in file order, so
+  // the same scenario and seed always dress the same actors.
   const Variant* pick(const std::string& class_name, uint64_t appearance) {
     if (!catalog_)
       catalog_ = std::make_unique<AssetCatalog>(load_asset_catalog(catalog_path_, classes_));
     const std::vector<const CatalogAsset*> assets = catalog_assets_of_class(*catalog_, class_name);
     if (assets.empty()) return nullptr;
-    const CatalogAsset& entry =
-        *assets[Rng(derive_seed(appearance, 0x6d657368)).below(assets.size())];
+    size_t i = Rng(derive_seed(appearance, 0x6d657368)).below(assets.size());
+    for (size_t k = 0; k < assets.size(); ++k) {
+      const size_t j = (i + k) % assets.size();
+      if (!variants_.count(assets[j]->name)) {
+        i = j;
+        break;
+      }
+    }
+    const CatalogAsset& entry = *assets[i];
     auto it = variants_.find(entry.name);
     if (it != variants_.end()) return &it->second;
     Variant v;
+    v.asset = entry.name;
     v.prefix = class_name + "_" + entry.name;
     auto model = std::make_shared<const AssetModel>(load_catalog_asset(*catalog_, entry));
     if (class_name == "person")
@@ -351,6 +362,7 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
     Instance& inst = add_instance(a.name, actor->class_name(), InstanceKind::kActor,
                                   where + ": actor '" + a.name + "'");
     inst.actor = static_cast<int>(model.actors.size());
+    if (variant) inst.asset = variant->asset;
     inst.pose = actor->root_pose(0.0);
     inst.extent = actor->local_extent();
     std::vector<Pose> poses;
