@@ -178,8 +178,10 @@ double profile_log_likelihood(const std::vector<ClassBoxes>& classes, const Shap
   return ll;
 }
 
+// From `start`, and from a few spread starts too when `spread`: the best
+// wins.
 Shape fit_shape(const std::vector<ClassBoxes>& classes, const Retention& retention,
-                const Shape& start) {
+                const Shape& start, bool spread) {
   auto shape_of = [](const std::vector<double>& x) {
     Shape s;
     s.boost = logistic(clamp(x[0], -12, 12));
@@ -190,12 +192,8 @@ Shape fit_shape(const std::vector<ClassBoxes>& classes, const Retention& retenti
   auto cost = [&](const std::vector<double>& x) {
     return -profile_log_likelihood(classes, shape_of(x), retention);
   };
-  // From the last fit, and from a few spread starts: the best wins.
-  const std::vector<std::array<double, 3>> starts = {
-      {start.boost, start.occlusion, start.small_area},
-      {0.5, 0.5, 0.05},
-      {0.9, 0.2, 0.3},
-      {0.2, 0.9, 0.01}};
+  std::vector<std::array<double, 3>> starts = {{start.boost, start.occlusion, start.small_area}};
+  if (spread) starts.insert(starts.end(), {{0.5, 0.5, 0.05}, {0.9, 0.2, 0.3}, {0.2, 0.9, 0.01}});
   std::vector<double> best;
   double best_cost = INFINITY;
   for (const auto& s : starts) {
@@ -356,7 +354,7 @@ SimDetectorFit fit_sim_detector(const FitData& data, const SimDetectorConfig& ba
   for (int round = 0; round < kRounds; ++round) {
     const Shape before = shape;
     const Localisation loc_before = loc;
-    shape = fit_shape(classes, retention, shape);
+    shape = fit_shape(classes, retention, shape, round == 0);
     difficulties(shape);
     loc = fit_localisation(matched, difficulty);
     retention = Retention(loc.jitter, loc.scale_error, loc.gain);
@@ -416,14 +414,33 @@ SimDetectorFit fit_sim_detector(const FitData& data, const SimDetectorConfig& ba
       confused += b->confused();
     }
 
-  // False positives.
-  const double fp_rate = static_cast<double>(fit.false_positives) / data.frames;
+  // False positives: the unmatched detections, less those the simulator
+  // makes itself from boxes its localisation error takes below IoU 0.5
+  // (expected number and confidence under the fitted model).
+  std::map<std::string, double> rate_of;
+  for (size_t k = 0; k < classes.size(); ++k) rate_of[classes[k].name] = rates[k];
+  double off_target = 0, off_target_confidence = 0;
+  for (const FitBox& b : data.boxes) {
+    const double s = model_smallness(b.area, b.image_area, shape.small_area);
+    const double d = model_difficulty(s, b.occlusion);
+    const double detected =
+        rate_of[b.truth_class] * (1.0 - shape.boost * s) * (1.0 - shape.occlusion * b.occlusion);
+    const double off = detected * (1.0 - retention.at(d));
+    off_target += off;
+    off_target_confidence += off * (max_c - (max_c - min_c) * drop * d);
+  }
+  double unmatched_confidence = 0;
+  for (double conf : data.false_positive_confidences) unmatched_confidence += conf;
+  const double fp_count = std::max(0.0, fit.false_positives - off_target);
+  const double fp_rate = fp_count / data.frames;
   double fp_max = std::max(min_c, base.false_positive_max_confidence);
   if (fit.false_positives > 0) {
-    double mean = 0;
-    for (double c : data.false_positive_confidences) mean += c / fit.false_positives;
+    // Uniform on [min, max]: max = 2 mean - min.
+    const double mean = fp_count >= 1.0 ? (unmatched_confidence - off_target_confidence) / fp_count
+                                        : unmatched_confidence / fit.false_positives;
     fp_max = clamp(2.0 * mean - min_c, min_c, 1.0);
   }
+  fit.off_target = off_target;
 
   SimDetectorConfig& c = fit.config;
   c = base;

@@ -28,9 +28,11 @@
 // - confusions: exactly the pairs observed; class_confusion_rate: confused /
 //   matched boxes of each class with a partner; class_confusion (classes
 //   without a rate of their own): the same pooled over those classes.
-// - false_positive_rate: unmatched detections per frame;
+// - false_positive_rate: unmatched detections per frame, less the ones the
+//   simulator makes itself when its localisation error takes a detection
+//   below IoU 0.5 (their expected number under the fit);
 //   false_positive_max_confidence: the upper end of a uniform distribution
-//   from min_confidence with their mean confidence.
+//   from min_confidence with the rest's mean confidence.
 // The miss model, r(d) and the localisation depend on each other through
 // small_area and the sigmas: they are fitted in turn, three rounds.
 #include <map>
@@ -82,6 +84,9 @@ struct SimDetectorFit {
   std::map<std::string, ClassFit> classes;  // per truth class with boxes
   long boxes = 0, matched = 0, confused = 0, false_positives = 0, frames = 0;
   double miss_log_likelihood = 0;  // of the miss model at the fit, nats
+  // Of the unmatched detections, how many the fitted model expects from
+  // boxes detected below IoU 0.5 (the rest are its false positives).
+  double off_target = 0;
 };
 
 // Fits the model to `data`. Throws depot::Error "<where>: <problem>" when a

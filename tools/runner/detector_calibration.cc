@@ -302,6 +302,7 @@ std::string calibration_file_text(const DetectorCalibration& cal, const std::str
   out << YAML::Key << "matched" << YAML::Value << f.matched;
   out << YAML::Key << "confused" << YAML::Value << f.confused;
   out << YAML::Key << "unmatched_detections" << YAML::Value << f.false_positives;
+  out << YAML::Key << "of_them_off_target" << YAML::Value << f.off_target;
   out << YAML::Key << "miss_log_likelihood" << YAML::Value << f.miss_log_likelihood;
   out << YAML::Key << "sim_seeds" << YAML::Value << cal.sim_seeds;
   out << YAML::Key << "false_positives_per_frame" << YAML::Value << YAML::Flow << YAML::BeginMap;
