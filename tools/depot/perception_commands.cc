@@ -174,6 +174,8 @@ void run_calibrate(CalibrateArgs& a) {
   meta.command += " --detector " + type;
   if (!a.detector.detector_config.empty())
     meta.command += " --detector-config " + runner::portable_path(a.detector.detector_config);
+  for (const YamlOverride& o : a.detector.detector_overrides)
+    meta.command += " --detector-set " + o.key + "=" + o.value;
   if (!a.class_map.empty()) meta.command += " --class-map " + runner::portable_path(a.class_map);
   if (a.every != 1) meta.command += " --every " + std::to_string(a.every);
   meta.command += " -o " + runner::portable_path(a.output);
