@@ -50,6 +50,20 @@ std::vector<std::string> DetectionRules::fill_bucket_names() const {
   return bucket_names(fill_edges);
 }
 
+FrameMatch match_frame(const std::vector<TruthObject>& truth,
+                       const std::vector<ScoredDetection>& detections, const ClassMapping& mapping,
+                       double min_iou) {
+  FrameMatch out{{}, no_matches(truth.size(), detections.size())};
+  greedy_match(
+      truth, detections, min_iou,
+      [&](size_t d, size_t t) { return mapping.matches(detections[d].label, truth[t].class_name); },
+      out.any);
+  out.by_class = out.any.detection_of_truth;
+  greedy_match(
+      truth, detections, min_iou, [](size_t, size_t) { return true; }, out.any);
+  return out;
+}
+
 double Tally::rate() const {
   return total > 0 ? static_cast<double>(found) / total : NAN;
 }
@@ -86,16 +100,9 @@ ClassTally& DetectionScore::mutable_tally(const std::string& class_name) {
 void DetectionScore::add_frame(const std::vector<TruthObject>& truth,
                                const std::vector<ScoredDetection>& detections) {
   ++frames_;
-  Matching m = no_matches(truth.size(), detections.size());
-  greedy_match(
-      truth, detections, rules_.min_iou,
-      [&](size_t d, size_t t) {
-        return mapping_.matches(detections[d].label, truth[t].class_name);
-      },
-      m);
-  const std::vector<int> by_class = m.detection_of_truth;
-  greedy_match(
-      truth, detections, rules_.min_iou, [](size_t, size_t) { return true; }, m);
+  const FrameMatch match = match_frame(truth, detections, mapping_, rules_.min_iou);
+  const std::vector<int>& by_class = match.by_class;
+  const Matching& m = match.any;
 
   for (size_t t = 0; t < truth.size(); ++t) {
     const TruthObject& box = truth[t];

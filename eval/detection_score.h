@@ -42,6 +42,17 @@ struct DetectionRules {
   std::vector<std::string> fill_bucket_names() const;
 };
 
+// The matching of one frame by the rules above: `by_class[t]` is the
+// detection that found truth box t under the class rule (-1: none); `any`
+// holds those pairs and then the pairs of any class among what they left.
+struct FrameMatch {
+  std::vector<int> by_class;
+  Matching any;
+};
+FrameMatch match_frame(const std::vector<TruthObject>& truth,
+                       const std::vector<ScoredDetection>& detections, const ClassMapping& mapping,
+                       double min_iou);
+
 // found of total; rate() is NaN when total is 0.
 struct Tally {
   long found = 0, total = 0;

@@ -1,5 +1,7 @@
 // Perception measured: `depot eval detector|segmenter` on a rendered walking
 // scenario and on the real TUM frame (with its hand labels), and bad input.
+#include <yaml-cpp/yaml.h>
+
 #include <filesystem>
 #include <fstream>
 
@@ -10,6 +12,7 @@
 #include "slam/detect/detector_config.h"
 #include "slam/detect/detector_factory.h"
 #include "slam/detect/person_segmenter.h"
+#include "slam/detect/sim_detector_config.h"
 #include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
 #include "tools/runner/detector_eval.h"
@@ -146,6 +149,108 @@ TEST(Perception, BadInputIsOneErrorLine) {
   expect_error("eval detector", "depot eval: give a DATASET, --images LABELS.yaml, or both");
   const std::string real = std::string(DEPOT_SHARED_DATA) + "/tum/" + kTumFrame;
   expect_error("eval detector " + real, real + ": no ground-truth boxes (boxes.txt)");
+}
+
+// Mesh people, small frames: what `depot eval calibrate` is fitted on.
+const std::string& mesh_walking_dataset() {
+  static const std::string d = [] {
+    SmallRender r{"depot_walking_xyz", 30, 320, false};
+    r.set = {{"actors_style", "mesh"}};
+    return render_small(r);
+  }();
+  return d;
+}
+
+TEST(Perception, CalibrateFitsTheSimulatedDetectorToYoloFastest) {
+  REQUIRE_SHARED_DATA();
+  const std::string out = temp_path("calibrated") + ".yaml";
+  const DepotResult r = depot("eval calibrate " + mesh_walking_dataset() + " -q -o " + out);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("person"), std::string::npos) << r.output;
+  // The file is a simulated detector config ...
+  const slam::SimDetectorConfig c = slam::load_sim_detector_config_file(out);
+  EXPECT_DOUBLE_EQ(c.min_confidence, 0.3) << "Yolo-Fastest's threshold";
+  // Measured here: person miss rate 0 (the rest is explained by size and
+  // occlusion), jitter 0.066, scale error 0.16, 0.4 false positives a frame.
+  EXPECT_LT(c.class_miss_rate.at("person"), 0.3) << "people are found";
+  EXPECT_GT(c.class_miss_rate.at("desk"), 0.9) << "desks are not";
+  EXPECT_GT(c.jitter, 0.01);
+  EXPECT_LT(c.jitter, 0.2);
+  EXPECT_GT(c.scale_error, 0.02);
+  EXPECT_LT(c.scale_error, 0.4);
+  EXPECT_GT(c.max_confidence, 0.5);
+  EXPECT_LT(c.false_positive_rate, 2.0);
+  // ... beside the measurement it came from.
+  const YAML::Node cal = YAML::LoadFile(out)["calibration"];
+  ASSERT_TRUE(cal.IsMap());
+  EXPECT_EQ(cal["detector"].as<std::string>(), "darknet");
+  EXPECT_EQ(cal["detector_config"].as<std::string>(), "scenes/detectors/yolo_fastest.yaml");
+  EXPECT_EQ(cal["command"].as<std::string>(),
+            "depot eval calibrate " + mesh_walking_dataset() + " --detector darknet -o " + out);
+  const YAML::Node d = cal["datasets"][0];
+  EXPECT_EQ(d["scenario"].as<std::string>(), "depot_walking_xyz");
+  EXPECT_EQ(d["actors_style"].as<std::string>(), "mesh");
+  EXPECT_EQ(d["frames"].as<int>(), 30);
+  EXPECT_EQ(d["size"].as<std::string>(), "320x240");
+  EXPECT_NE(d["render"].as<std::string>().find("--width 320 --set actors_style=mesh"),
+            std::string::npos);
+  const YAML::Node person = cal["classes"]["person"];
+  EXPECT_GT(person["boxes"].as<int>(), 20);
+  EXPECT_GT(person["detections"].as<int>(), 10);
+  // The fitted simulated detector finds people about as often as the real
+  // one on the same frames (measured 0.77 and 0.80).
+  EXPECT_GT(person["recall_real"].as<double>(), 0.5);
+  EXPECT_NEAR(person["recall_sim"].as<double>(), person["recall_real"].as<double>(), 0.15);
+}
+
+TEST(Perception, CalibrateRecoversTheSimulatedDetectorsOwnParameters) {
+  // The simulated detector fitted to itself, through the command.
+  const std::string known =
+      write_yaml("known",
+                 "miss_rate: 0.2\nsmall_miss_boost: 0.5\nsmall_area: 0.02\nocclusion_miss: 0.4\n"
+                 "jitter: 0.05\nscale_error: 0.08\nhard_jitter_gain: 0\nmax_confidence: 0.9\n"
+                 "confidence_noise: 0.05\nfalse_positive_rate: 0.5\nclass_confusion: 0\n");
+  const std::string out = temp_path("self") + ".yaml";
+  const DepotResult r = depot("eval calibrate " + mesh_walking_dataset() +
+                              " --detector sim --detector-config " + known + " -q -o " + out);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const slam::SimDetectorConfig c = slam::load_sim_detector_config_file(out);
+  // 171 boxes only: coarse.
+  EXPECT_NEAR(c.class_miss_rate.at("person"), 0.2, 0.15);
+  EXPECT_NEAR(c.jitter, 0.05, 0.015);
+  EXPECT_NEAR(c.scale_error, 0.08, 0.025);
+  EXPECT_NEAR(c.max_confidence, 0.9, 0.05);
+  EXPECT_NEAR(c.false_positive_rate, 0.5, 0.3);
+  EXPECT_TRUE(c.confusions.empty());
+  EXPECT_EQ(YAML::LoadFile(out)["calibration"]["class_map"].as<std::string>(), "identity");
+}
+
+TEST(Perception, CalibrateBadInputIsOneErrorLineAndNoFile) {
+  REQUIRE_SHARED_DATA();
+  const std::string dir = temp_path("calibrate_out");
+  fs::create_directories(dir);
+  const std::string out = dir + "/sim.yaml";
+  auto expect_calibrate_error = [&](const std::string& args, const std::string& needle, int code) {
+    const DepotResult r = depot("eval calibrate " + args + " -q -o " + out);
+    EXPECT_EQ(r.code, code) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_EQ(r.output.rfind("depot: error: " + needle, 0), 0u) << r.output;
+    EXPECT_TRUE(fs::is_empty(dir)) << "no output, not even a partial one: " << args;
+  };
+  const std::string data = mesh_walking_dataset();
+  expect_calibrate_error(
+      data + " --detector yolo9",
+      "eval calibrate: --detector: yolo9 not in {darknet,xl,fastestdet,yolov5,sim}", 2);
+  const std::string real = std::string(DEPOT_SHARED_DATA) + "/tum/" + kTumFrame;
+  expect_calibrate_error(data + " " + real,
+                         real +
+                             ": no ground-truth boxes (boxes.txt): the calibration needs a "
+                             "simulated dataset (depot sim render)",
+                         1);
+  expect_calibrate_error(data +
+                             " --detector sim --detector-set miss_rate=1 --detector-set "
+                             "false_positive_rate=0",
+                         data + ": the detector matched none of the", 1);
 }
 
 }  // namespace

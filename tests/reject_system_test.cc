@@ -1,5 +1,5 @@
 // Rejection inside the running system on a rendered walking scene: `full`
-// with the simulated detector (default error level) must beat plain ORB-SLAM2
+// with the simulated detector (its default, calibrated to Yolo-Fastest) must beat plain ORB-SLAM2
 // by a wide margin, and its rejected points must be scored against the
 // simulator's ground truth.
 #include <gtest/gtest.h>
@@ -24,9 +24,11 @@ TEST(RejectSystem, FullModeBeatsPlainOrbOnWalkingPeople) {
       orb.ate_rmse, yolo.ate_rmse, full.ate_rmse, rho, full.score.precision(), full.score.recall());
   EXPECT_LT(full.ate_rmse, 0.03);
   EXPECT_GT(rho, 80.0);
-  // Two frames (192, 194) where three people cover most of the view are
-  // lost and relocalised.
-  EXPECT_LE(full.lost, 3);
+  // Frames where people cover much of the view are lost and relocalised at
+  // once: with the earlier generic error model two (192, 194); with the
+  // default calibrated to Yolo-Fastest (larger box errors, desks and chairs
+  // never found) eight (24, 43, 182-196 every other frame; ATE unchanged).
+  EXPECT_LE(full.lost, 8);
   // The rejected points are mostly on moving people (recall), even though box-level
   // rejection also throws away background inside the boxes (precision).
   EXPECT_GT(full.score.recall(), 0.8);

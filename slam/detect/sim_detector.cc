@@ -42,6 +42,14 @@ cv::Rect2f clip(const cv::Rect2f& b, cv::Size size) {
 
 }  // namespace
 
+double model_smallness(double area, double image_area, double small_area) {
+  return clamp01(1.0 - std::sqrt(area / (small_area * image_area)));
+}
+
+double model_difficulty(double smallness, double occlusion) {
+  return 1.0 - (1.0 - smallness) * (1.0 - occlusion);
+}
+
 SimDetector::SimDetector(const std::string& dataset_dir, const SimDetectorConfig& config)
     : dir_(dataset_dir), config_(config) {
   validate(config_, "simulated detector config");
@@ -64,6 +72,14 @@ SimDetector::SimDetector(const std::string& dataset_dir, const SimDetectorConfig
     const size_t k = static_cast<size_t>(0.9 * static_cast<double>(v.size() - 1));
     std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
     reference_fill_[c] = v[k];
+  }
+  miss_rate_.assign(n, config_.miss_rate);
+  confusion_rate_.assign(n, config_.class_confusion);
+  for (size_t c = 0; c < n; ++c) {
+    const auto miss = config_.class_miss_rate.find(data_.classes[c]);
+    if (miss != config_.class_miss_rate.end()) miss_rate_[c] = miss->second;
+    const auto confusion = config_.class_confusion_rate.find(data_.classes[c]);
+    if (confusion != config_.class_confusion_rate.end()) confusion_rate_[c] = confusion->second;
   }
   confusions_.assign(n, {});
   for (const auto& [name, partners] : config_.confusions) {
@@ -88,9 +104,14 @@ double SimDetector::reference_fill(const std::string& class_name) const {
                                    : reference_fill_[it - data_.classes.begin()];
 }
 
+double SimDetector::class_miss_rate(const std::string& class_name) const {
+  const auto it = std::find(data_.classes.begin(), data_.classes.end(), class_name);
+  return it == data_.classes.end() ? config_.miss_rate : miss_rate_[it - data_.classes.begin()];
+}
+
 double SimDetector::smallness(const TruthBox& box) const {
   const double image_area = static_cast<double>(data_.image_size.area());
-  return clamp01(1.0 - std::sqrt(box.area() / (config_.small_area * image_area)));
+  return model_smallness(box.area(), image_area, config_.small_area);
 }
 
 double SimDetector::occlusion(const TruthBox& box) const {
@@ -102,11 +123,14 @@ double SimDetector::occlusion(const TruthBox& box) const {
 }
 
 double SimDetector::difficulty(const TruthBox& box) const {
-  return 1.0 - (1.0 - smallness(box)) * (1.0 - occlusion(box));
+  return model_difficulty(smallness(box), occlusion(box));
 }
 
 double SimDetector::miss_probability(const TruthBox& box) const {
-  return 1.0 - (1.0 - config_.miss_rate) * (1.0 - config_.small_miss_boost * smallness(box)) *
+  const double base = box.class_id >= 0 && box.class_id < static_cast<int>(miss_rate_.size())
+                          ? miss_rate_[box.class_id]
+                          : config_.miss_rate;
+  return 1.0 - (1.0 - base) * (1.0 - config_.small_miss_boost * smallness(box)) *
                    (1.0 - config_.occlusion_miss * occlusion(box));
 }
 
@@ -131,7 +155,7 @@ bool SimDetector::detect_box(const TruthBox& box, size_t frame, Detection& out) 
   if (u_miss < miss_probability(box)) return false;
   double d = difficulty(box);
   const auto& partners = confusions_[box.class_id];
-  if (!partners.empty() && u_confuse < config_.class_confusion) {
+  if (!partners.empty() && u_confuse < confusion_rate_[box.class_id]) {
     out.class_id = partners[pick % partners.size()];
     out.class_name = data_.classes[out.class_id];
     d = std::max(d, 0.5);
@@ -146,8 +170,8 @@ bool SimDetector::detect_box(const TruthBox& box, size_t frame, Detection& out) 
                             static_cast<float>(w2), static_cast<float>(h2)),
                  data_.image_size);
   if (out.box.width <= 0 || out.box.height <= 0) return false;
-  const double mean =
-      config_.max_confidence - (config_.max_confidence - config_.min_confidence) * d;
+  const double mean = config_.max_confidence - (config_.max_confidence - config_.min_confidence) *
+                                                   config_.confidence_drop * d;
   out.confidence = static_cast<float>(
       std::min(1.0, std::max(config_.min_confidence, mean + config_.confidence_noise * n_conf)));
   return true;

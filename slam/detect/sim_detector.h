@@ -19,11 +19,13 @@
 //   fill       f = V / A;  occlusion o = clamp(1 - f / f_class, 0, 1), where
 //              f_class = reference_fill(class) (an unoccluded object's fill)
 //   difficulty d = 1 - (1 - s)(1 - o)
-//   P(miss)      = 1 - (1 - miss_rate)(1 - small_miss_boost s)(1 - occlusion_miss o)
+//   P(miss)      = 1 - (1 - m)(1 - small_miss_boost s)(1 - occlusion_miss o),
+//                  m = class_miss_rate of the box's class, else miss_rate
 //   box          = centre + N(0, jitter (1 + g d)) x size,
 //                  size x exp(N(0, scale_error (1 + g d))) per axis,
 //                  g = hard_jitter_gain; clipped to the image (dropped if empty)
-//   confidence   = clamp(max_c - (max_c - min_c) d + N(0, confidence_noise), min_c, 1)
+//   confidence   = clamp(max_c - (max_c - min_c) k d + N(0, confidence_noise), min_c, 1),
+//                  k = confidence_drop
 // Detections of real objects come in boxes.txt order, false positives after.
 #include <string>
 #include <vector>
@@ -33,6 +35,13 @@
 #include "slam/detect/truth_boxes.h"
 
 namespace depot::slam {
+
+// The model's terms from a box's numbers (what SimDetector's members compute
+// from a TruthBox; the calibration's fit uses them too): smallness of a box
+// of `area` pixels in an image of `image_area` pixels, and the difficulty of
+// a box of this smallness and occlusion.
+double model_smallness(double area, double image_area, double small_area);
+double model_difficulty(double smallness, double occlusion);
 
 class SimDetector : public Detector {
  public:
@@ -70,6 +79,9 @@ class SimDetector : public Detector {
   double occlusion(const TruthBox& box) const;
   double difficulty(const TruthBox& box) const;
   double miss_probability(const TruthBox& box) const;
+  // The miss rate of a large, unoccluded box of the class (class_miss_rate,
+  // else miss_rate).
+  double class_miss_rate(const std::string& class_name) const;
   // Fill of an unoccluded object of the class: the 90th percentile of the
   // class's fills in boxes.txt, or config().default_fill with fewer than 10
   // boxes.
@@ -84,6 +96,8 @@ class SimDetector : public Detector {
   SimDetectorConfig config_;
   DatasetBoxes data_;                   // rgb.txt frames, classes, image size, boxes
   std::vector<double> reference_fill_;  // per class id
+  std::vector<double> miss_rate_;       // per class id
+  std::vector<double> confusion_rate_;  // per class id
   // Sizes (w, h) of all ground-truth boxes per class id (false positives).
   std::vector<std::vector<cv::Size>> class_sizes_;
   std::vector<std::vector<int>> confusions_;  // per class id: partner class ids

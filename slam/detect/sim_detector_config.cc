@@ -51,6 +51,7 @@ const DoubleField kDoubles[] = {
     {"hard_jitter_gain", &SimDetectorConfig::hard_jitter_gain, 0, 10, false},
     {"min_confidence", &SimDetectorConfig::min_confidence, 0, 1, false},
     {"max_confidence", &SimDetectorConfig::max_confidence, 0, 1, false},
+    {"confidence_drop", &SimDetectorConfig::confidence_drop, 0, 1, false},
     {"confidence_noise", &SimDetectorConfig::confidence_noise, 0, 1, false},
     {"false_positive_rate", &SimDetectorConfig::false_positive_rate, 0, 10, false},
     {"false_positive_max_confidence", &SimDetectorConfig::false_positive_max_confidence, 0, 1,
@@ -81,6 +82,32 @@ void check_confusions(const std::map<std::string, std::vector<std::string>>& con
   }
 }
 
+// A class -> probability map (class_miss_rate, class_confusion_rate).
+void check_class_rates(const char* key, const std::map<std::string, double>& rates,
+                       const std::string& where) {
+  for (const auto& [cls, rate] : rates) {
+    if (cls.empty()) fail(where, std::string("'") + key + "' has an empty class name");
+    if (!std::isfinite(rate) || rate < 0 || rate > 1)
+      fail(where,
+           std::string("'") + key + "' of '" + cls + "' = " + number(rate) + " is outside [0, 1]");
+  }
+}
+
+// Reads a class -> probability map into `rates`.
+void read_class_rates(const char* key, const YAML::Node& v, const std::string& where,
+                      std::map<std::string, double>& rates) {
+  if (!v.IsMap() && !v.IsNull())
+    fail(at(where, v), std::string("'") + key + "' must be a map: class -> probability");
+  rates.clear();
+  if (!v.IsMap()) return;
+  for (const auto& entry : v) {
+    const std::string cls = read<std::string>(entry.first, key, where);
+    const double rate = read<double>(entry.second, std::string(key) + ": " + cls, where);
+    check_class_rates(key, {{cls, rate}}, at(where, entry.second));
+    rates[cls] = rate;
+  }
+}
+
 // Checks between fields, once all are read.
 void check_consistency(const SimDetectorConfig& c, const std::string& where) {
   if (c.min_confidence > c.max_confidence)
@@ -97,6 +124,8 @@ void check_consistency(const SimDetectorConfig& c, const std::string& where) {
 void validate(const SimDetectorConfig& c, const std::string& where) {
   for (const DoubleField& f : kDoubles) check(f, c.*f.field, where);
   check_latency(c.latency_frames, where);
+  check_class_rates("class_miss_rate", c.class_miss_rate, where);
+  check_class_rates("class_confusion_rate", c.class_confusion_rate, where);
   check_confusions(c.confusions, where);
   check_consistency(c, where);
 }
@@ -106,8 +135,14 @@ SimDetectorConfig load_sim_detector_config(const YAML::Node& node, const std::st
   SimDetectorConfig c = defaults;
   if (!node || node.IsNull()) return c;
   if (!node.IsMap()) fail(at(where, node), "the simulated detector config must be a YAML map");
+  bool sets_miss_rate = false, sets_class_miss_rate = false;
+  bool sets_confusion = false, sets_class_confusion_rate = false;
   for (const auto& kv : node) {
     const std::string key = kv.first.as<std::string>();
+    sets_miss_rate |= key == "miss_rate";
+    sets_class_miss_rate |= key == "class_miss_rate";
+    sets_confusion |= key == "class_confusion";
+    sets_class_confusion_rate |= key == "class_confusion_rate";
     const YAML::Node& v = kv.second;
     const std::string here = at(where, v);
     if (key == "seed") {
@@ -117,6 +152,13 @@ SimDetectorConfig load_sim_detector_config(const YAML::Node& node, const std::st
     } else if (key == "latency_frames") {
       c.latency_frames = read<int>(v, key, where);
       check_latency(c.latency_frames, here);
+    } else if (key == "calibration") {
+      // The measurement the values came from: for people, not checked.
+      if (!v.IsMap()) fail(here, "'calibration' must be a map (what the values were fitted on)");
+    } else if (key == "class_miss_rate") {
+      read_class_rates("class_miss_rate", v, where, c.class_miss_rate);
+    } else if (key == "class_confusion_rate") {
+      read_class_rates("class_confusion_rate", v, where, c.class_confusion_rate);
     } else if (key == "confusions") {
       if (!v.IsMap() && !v.IsNull())
         fail(here, "'confusions' must be a map: class -> [classes it is mistaken for]");
@@ -140,6 +182,9 @@ SimDetectorConfig load_sim_detector_config(const YAML::Node& node, const std::st
       check(*f, c.*f->field, here);
     }
   }
+  // One rate for every class, unless the node gives per-class rates too.
+  if (sets_miss_rate && !sets_class_miss_rate) c.class_miss_rate.clear();
+  if (sets_confusion && !sets_class_confusion_rate) c.class_confusion_rate.clear();
   check_consistency(c, where);
   return c;
 }

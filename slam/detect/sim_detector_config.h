@@ -1,15 +1,20 @@
 #pragma once
 // Configuration of the simulated detector (sim_detector.h): how it degrades
 // the simulator's ground-truth boxes the way a real YOLO does. The defaults
-// are a realistic YOLOv5s-like detector, not a perfect one.
+// below are a generic YOLOv5s-like guess; `depot slam run --detector sim`
+// and the tests use scenes/detectors/sim.yaml instead, the error model fitted
+// to the real Yolo-Fastest 1.1 on simulated frames (`depot eval calibrate`).
 //
 // YAML form (every key optional, names as the fields below):
 //
 //   seed: 1
 //   miss_rate: 0.05
+//   class_miss_rate: {desk: 0.95}                  # replaces miss_rate per class
+//   class_confusion_rate: {dog: 0.7}               # replaces class_confusion per class
 //   small_miss_boost: 0.6
 //   confusions: {dog: [cat, pig], chair: [cart]}   # replaces the default table
 //   latency_frames: 0
+//   calibration: {...}   # how the values were measured; read by people, not checked
 #include <cstdint>
 #include <map>
 #include <string>
@@ -35,6 +40,13 @@ struct SimDetectorConfig {
   // where s = smallness, o = occlusion, both in [0, 1] (sim_detector.h).
   // Probability of missing a large, unoccluded box.
   double miss_rate = 0.05;
+  // The same per class (class -> rate), replacing miss_rate for that class:
+  // real detectors find some classes far more reliably than others. Classes
+  // that are not in the dataset's classes.txt are ignored. A YAML map that
+  // sets miss_rate without class_miss_rate (e.g. `--detector-set
+  // miss_rate=0.2`, a sweep's miss_rate levels) drops the per-class rates it
+  // starts from: one rate for every class.
+  std::map<std::string, double> class_miss_rate;
   // Extra miss probability of a vanishingly small box (s = 1).
   double small_miss_boost = 0.6;
   // Box area, as a fraction of the image area, from which a box counts as
@@ -65,8 +77,13 @@ struct SimDetectorConfig {
   // Output threshold of the detector: no detection scores below it.
   double min_confidence = 0.3;
   // Mean confidence of an easy box (d = 0). The mean falls linearly with the
-  // difficulty d to min_confidence at d = 1.
+  // difficulty d, by confidence_drop x (max_confidence - min_confidence) at
+  // d = 1.
   double max_confidence = 0.95;
+  // How far the mean confidence falls at d = 1, as a fraction of the way
+  // from max_confidence down to min_confidence: 1 = all the way (a hard box
+  // scores about min_confidence), 0 = confidence does not depend on d.
+  double confidence_drop = 1.0;
   // Standard deviation of the confidence around that mean (then clamped to
   // [min_confidence, 1]).
   double confidence_noise = 0.05;
@@ -87,6 +104,10 @@ struct SimDetectorConfig {
   // is labelled as one of them (chosen uniformly). Confused boxes score as
   // hard boxes (d >= 0.5).
   double class_confusion = 0.02;
+  // The same per class (class -> probability), replacing class_confusion for
+  // that class. A YAML map that sets class_confusion without
+  // class_confusion_rate drops the per-class rates it starts from.
+  std::map<std::string, double> class_confusion_rate;
   // class -> classes it is mistaken for. Pairs naming a class that is not in
   // the dataset's classes.txt are ignored.
   std::map<std::string, std::vector<std::string>> confusions = {
@@ -103,7 +124,8 @@ struct SimDetectorConfig {
 // `defaults`. Throws depot::Error "<where>[:line]: <problem>" for an unknown
 // key, a value of the wrong type, a probability outside [0, 1], a latency
 // outside 0..30 or inconsistent confidences (min < max, min <= false positive
-// max). A null node gives `defaults`.
+// max). A null node gives `defaults`. The key `calibration` (a map: what the
+// values were fitted on, see `depot eval calibrate`) is accepted and ignored.
 SimDetectorConfig load_sim_detector_config(const YAML::Node& node, const std::string& where,
                                            const SimDetectorConfig& defaults = {});
 

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -40,7 +41,9 @@ TEST(SimDetectorConfig, ReadsEveryKey) {
       "occlusion_miss: 0.3\ndefault_fill: 0.4\njitter: 0.05\nscale_error: 0.06\n"
       "hard_jitter_gain: 2\nmin_confidence: 0.25\nmax_confidence: 0.9\nconfidence_noise: 0.1\n"
       "false_positive_rate: 1.5\nfalse_positive_max_confidence: 0.45\nclass_confusion: 0.07\n"
-      "confusions: {dog: [cat, pig], chair: cart}\nlatency_frames: 3\n");
+      "confusions: {dog: [cat, pig], chair: cart}\nlatency_frames: 3\n"
+      "class_miss_rate: {desk: 0.95, person: 0.02}\nconfidence_drop: 0.4\n"
+      "class_confusion_rate: {dog: 0.6}\n");
   EXPECT_EQ(c.seed, 42u);
   EXPECT_TRUE(c.perfect);
   EXPECT_DOUBLE_EQ(c.miss_rate, 0.1);
@@ -61,6 +64,50 @@ TEST(SimDetectorConfig, ReadsEveryKey) {
   EXPECT_EQ(c.confusions.at("dog"), (std::vector<std::string>{"cat", "pig"}));
   EXPECT_EQ(c.confusions.at("chair"), (std::vector<std::string>{"cart"}));
   EXPECT_EQ(c.latency_frames, 3);
+  EXPECT_EQ(c.class_miss_rate, (std::map<std::string, double>{{"desk", 0.95}, {"person", 0.02}}));
+  EXPECT_DOUBLE_EQ(c.confidence_drop, 0.4);
+  EXPECT_EQ(c.class_confusion_rate, (std::map<std::string, double>{{"dog", 0.6}}));
+}
+
+TEST(SimDetectorConfig, PerClassRatesAndTheCalibrationBlock) {
+  // Defaults: one rate for all classes, the full confidence drop.
+  EXPECT_TRUE(SimDetectorConfig{}.class_miss_rate.empty());
+  EXPECT_TRUE(SimDetectorConfig{}.class_confusion_rate.empty());
+  EXPECT_EQ(SimDetectorConfig{}.confidence_drop, 1.0);
+  // The calibration block is read by people, not checked, but must be a map.
+  const SimDetectorConfig c = from(
+      "miss_rate: 0.3\nclass_miss_rate: {desk: 1}\nclass_confusion: 0.1\n"
+      "class_confusion_rate: {dog: 0.5}\n"
+      "calibration:\n  detector: darknet\n  datasets:\n    - {path: a, seed: 1}\n");
+  EXPECT_DOUBLE_EQ(c.miss_rate, 0.3);
+  EXPECT_EQ(c.class_miss_rate.at("desk"), 1.0);
+  EXPECT_EQ(error_of([] { from("calibration: darknet"); }),
+            "cfg.yaml:1: 'calibration' must be a map (what the values were fitted on)");
+  // Over such a config, a map that sets one rate drops the per-class rates
+  // (a sweep's miss_rate levels mean every class); with both, both count.
+  const SimDetectorConfig one = load_sim_detector_config(YAML::Load("miss_rate: 0.2"), "x", c);
+  EXPECT_DOUBLE_EQ(one.miss_rate, 0.2);
+  EXPECT_TRUE(one.class_miss_rate.empty());
+  EXPECT_EQ(one.class_confusion_rate.at("dog"), 0.5) << "confusion rates untouched";
+  const SimDetectorConfig both = load_sim_detector_config(
+      YAML::Load("miss_rate: 0.2\nclass_miss_rate: {cat: 0.4}\nclass_confusion: 0"), "x", c);
+  EXPECT_EQ(both.class_miss_rate, (std::map<std::string, double>{{"cat", 0.4}}));
+  EXPECT_TRUE(both.class_confusion_rate.empty());
+  EXPECT_EQ(load_sim_detector_config(YAML::Load("jitter: 0.1"), "x", c).class_miss_rate.at("desk"),
+            1.0);
+  // Errors name the line, the key and the class.
+  EXPECT_EQ(error_of([] { from("jitter: 0.1\nclass_miss_rate: {desk: 1.5}"); }),
+            "cfg.yaml:2: 'class_miss_rate' of 'desk' = 1.5 is outside [0, 1]");
+  EXPECT_EQ(error_of([] { from("class_confusion_rate: [dog]"); }),
+            "cfg.yaml:1: 'class_confusion_rate' must be a map: class -> probability");
+  EXPECT_EQ(error_of([] { from("class_miss_rate: {desk: lots}"); }),
+            "cfg.yaml:1: bad value for 'class_miss_rate: desk'");
+  EXPECT_EQ(error_of([] { from("confidence_drop: 2"); }),
+            "cfg.yaml:1: 'confidence_drop' = 2 is outside [0, 1]");
+  SimDetectorConfig bad;
+  bad.class_confusion_rate[""] = 0.5;
+  EXPECT_EQ(error_of([&] { validate(bad, "here"); }),
+            "here: 'class_confusion_rate' has an empty class name");
 }
 
 TEST(SimDetectorConfig, RangeErrorsNameTheLineAndTheKey) {

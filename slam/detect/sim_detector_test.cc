@@ -22,6 +22,7 @@
 #include "common/rng.h"
 #include "common/testing/error_of.h"
 #include "slam/detect/detection_file.h"
+#include "slam/detect/sim_detector_fit.h"
 
 namespace depot::slam {
 namespace {
@@ -212,6 +213,45 @@ TEST_F(SimDetectorTest, BaseMissRateMatchesTheConfiguration) {
   std::cout << "[sim] base miss rate: configured 0.2, measured " << measured << " over " << truth
             << " boxes\n";
   EXPECT_NEAR(measured, 0.2, tolerance(0.2, truth));
+}
+
+TEST_F(SimDetectorTest, PerClassRatesReplaceTheGlobalOnes) {
+  SimDetectorConfig config;
+  config.miss_rate = 0.0;
+  config.small_miss_boost = 0.0;
+  config.occlusion_miss = 0.0;
+  config.false_positive_rate = 0.0;
+  config.jitter = config.scale_error = 0.0;
+  config.class_miss_rate = {{"person", 1.0}, {"horse", 0.5}};  // not a class here: ignored
+  config.class_confusion = 0.0;
+  config.class_confusion_rate = {{"chair", 1.0}};
+  double people = 0, chairs = 0, carts = 0, others = 0;
+  for (int s = 0; s < 20; ++s) {
+    SimDetector detector(*dataset_, with_seed(config, 8000 + s));
+    EXPECT_EQ(detector.class_miss_rate("person"), 1.0);
+    EXPECT_EQ(detector.class_miss_rate("desk"), 0.0);
+    for (size_t i = 0; i < detector.frame_count(); ++i) {
+      const auto& t = detector.truth(i);
+      const auto dets = detector.detect_frame(i);
+      const auto m = match(t, dets, 0.999);
+      for (size_t k = 0; k < t.size(); ++k) {
+        if (t[k].class_name == "person") {
+          people += m[k] >= 0;
+        } else if (t[k].class_name == "chair") {
+          ASSERT_GE(m[k], 0);
+          chairs += 1;
+          carts += dets[m[k]].class_name == "cart";
+        } else {
+          ASSERT_GE(m[k], 0) << t[k].class_name;
+          others += dets[m[k]].class_name != t[k].class_name;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(people, 0) << "person's own miss rate 1";
+  EXPECT_GT(chairs, 0);
+  EXPECT_EQ(carts, chairs) << "chair's own confusion rate 1";
+  EXPECT_EQ(others, 0) << "the global confusion rate 0";
 }
 
 TEST_F(SimDetectorTest, DefaultMissRateMatchesTheModel) {
@@ -551,6 +591,93 @@ TEST_F(SimDetectorTest, MissingOrMalformedFilesAreClearErrors) {
   bad.miss_rate = 2;
   EXPECT_EQ(error_of([&] { SimDetector(*dataset_, bad); }),
             "simulated detector config: 'miss_rate' = 2 is outside [0, 1]");
+}
+
+TEST_F(SimDetectorTest, FitRecoversTheConfigurationFromItsOwnDetections) {
+  // What `depot eval calibrate` does, on the simulated detector with known
+  // parameters: match its detections to the boxes at IoU >= 0.5, fit.
+  SimDetectorConfig known;
+  known.miss_rate = 0.15;
+  known.class_miss_rate = {{"person", 0.05}};
+  known.small_miss_boost = 0.6;
+  known.small_area = 0.02;
+  known.occlusion_miss = 0.4;
+  known.jitter = 0.05;
+  known.scale_error = 0.08;
+  known.hard_jitter_gain = 1.0;
+  known.max_confidence = 0.9;
+  known.confidence_drop = 0.5;
+  known.confidence_noise = 0.05;
+  known.false_positive_rate = 0.3;
+  known.false_positive_max_confidence = 0.6;
+  known.class_confusion = 0.0;
+  known.class_confusion_rate = {{"cat", 0.2}};
+  known.confusions = {{"cat", {"dog"}}};
+  FitData data;
+  data.min_confidence = known.min_confidence;
+  for (int s = 0; s < 100; ++s) {
+    for (const std::string* dataset : {dataset_, patrol_}) {
+      SimDetector detector(*dataset, with_seed(known, 9000 + s));
+      const double image_area = detector.image_size().area();
+      for (size_t i = 0; i < detector.frame_count(); ++i) {
+        const auto& t = detector.truth(i);
+        const auto dets = detector.detect_frame(i);
+        const auto m = match(t, dets, 0.5);
+        std::vector<bool> used(dets.size(), false);
+        for (size_t k = 0; k < t.size(); ++k) {
+          FitBox b;
+          b.truth_class = t[k].class_name;
+          b.area = t[k].area();
+          b.image_area = image_area;
+          b.occlusion = detector.occlusion(t[k]);
+          if (m[k] >= 0) {
+            const Detection& d = dets[m[k]];
+            used[m[k]] = true;
+            const cv::Rect2f r = t[k].rect();
+            b.detected_class = d.class_name;
+            b.dx = (d.box.x + d.box.width / 2 - r.x - r.width / 2) / r.width;
+            b.dy = (d.box.y + d.box.height / 2 - r.y - r.height / 2) / r.height;
+            b.log_w = std::log(d.box.width / r.width);
+            b.log_h = std::log(d.box.height / r.height);
+            b.confidence = d.confidence;
+          }
+          data.boxes.push_back(b);
+        }
+        for (size_t d = 0; d < dets.size(); ++d)
+          if (!used[d]) data.false_positive_confidences.push_back(dets[d].confidence);
+        ++data.frames;
+      }
+    }
+  }
+  const SimDetectorFit fit = fit_sim_detector(data, SimDetectorConfig{}, "sim");
+  const SimDetectorConfig& c = fit.config;
+  std::cout << "[sim] fit on " << fit.boxes << " boxes: miss person "
+            << c.class_miss_rate.at("person") << " (0.05), pig " << c.class_miss_rate.at("pig")
+            << " (0.15), boost " << c.small_miss_boost << " (0.6), small_area " << c.small_area
+            << " (0.02), occlusion " << c.occlusion_miss << " (0.4), jitter " << c.jitter
+            << " (0.05), scale " << c.scale_error << " (0.08), gain " << c.hard_jitter_gain
+            << " (1), max conf " << c.max_confidence << " (0.9), drop " << c.confidence_drop
+            << " (0.5), noise " << c.confidence_noise << " (0.05), fp " << c.false_positive_rate
+            << " (0.3), fp max conf " << c.false_positive_max_confidence << " (0.6), miss_rate "
+            << c.miss_rate << ", desk " << c.class_miss_rate.at("desk") << ", cat confusion "
+            << c.class_confusion_rate.at("cat") << " (0.2)\n";
+  EXPECT_NEAR(c.class_miss_rate.at("person"), 0.05, 0.03);
+  EXPECT_NEAR(c.class_miss_rate.at("pig"), 0.15, 0.05);
+  EXPECT_NEAR(c.class_miss_rate.at("desk"), 0.15, 0.05);
+  EXPECT_NEAR(c.small_miss_boost, 0.6, 0.1);
+  EXPECT_NEAR(c.small_area, 0.02, 0.006);
+  EXPECT_NEAR(c.occlusion_miss, 0.4, 0.08);
+  EXPECT_NEAR(c.jitter, 0.05, 0.005);
+  EXPECT_NEAR(c.scale_error, 0.08, 0.008);
+  EXPECT_NEAR(c.hard_jitter_gain, 1.0, 0.35);
+  EXPECT_NEAR(c.max_confidence, 0.9, 0.02);
+  EXPECT_NEAR(c.confidence_drop, 0.5, 0.06);
+  EXPECT_NEAR(c.confidence_noise, 0.05, 0.01);
+  EXPECT_NEAR(c.false_positive_rate, 0.3, 0.05);
+  EXPECT_NEAR(c.false_positive_max_confidence, 0.6, 0.05);
+  ASSERT_EQ(c.confusions.size(), 1u);
+  EXPECT_EQ(c.confusions.at("cat"), std::vector<std::string>{"dog"});
+  EXPECT_NEAR(c.class_confusion_rate.at("cat"), 0.2, 0.05);
 }
 
 TEST_F(SimDetectorTest, PrecomputedDetectionsReplayThroughAFile) {

@@ -7,6 +7,7 @@
 #include "slam/io/settings.h"
 #include "slam/io/tum_sequence.h"
 #include "slam/system/system.h"
+#include "tools/runner/slam_runner.h"
 
 namespace depot::test {
 
@@ -16,7 +17,8 @@ SlamOutcome run_slam_mode(const std::string& dataset, slam::RejectionMode mode, 
   slam::SlamSettings settings = slam::load_settings(sequence.calibration_path());
   settings.threaded_mapping = threaded;
   sequence.set_depth_factor(settings.camera.depth_factor);
-  slam::SimDetector detector(dataset);
+  // The default of `--detector sim`: the shipped, calibrated error model.
+  slam::SimDetector detector(dataset, runner::sim_detector_config(runner::RunOptions{}));
   slam::AprioriClasses classes =
       slam::AprioriClasses::load(std::string(DEPOT_SOURCE_DIR) + "/scenes/apriori/depot.yaml");
   classes.check_against(detector.class_names(), "depot.yaml", "sim");

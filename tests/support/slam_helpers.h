@@ -15,8 +15,9 @@ struct SlamOutcome {
   size_t trajectory_size = 0;
 };
 
-// The simulated detector at its default error level and the depot class
-// table; `threaded` picks the mapping thread (false = reproducible).
+// The simulated detector as `--detector sim` has it by default (the shipped
+// scenes/detectors/sim.yaml, calibrated to Yolo-Fastest 1.1) and the depot
+// class table; `threaded` picks the mapping thread (false = reproducible).
 SlamOutcome run_slam_mode(const std::string& dataset, slam::RejectionMode mode, bool threaded,
                           const slam::RejectionParams& params = {});
 

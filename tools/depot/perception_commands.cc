@@ -15,8 +15,10 @@
 #include "common/yaml_overrides.h"
 #include "eval/detection_report.h"
 #include "eval/image_labels.h"
+#include "slam/detect/detector_config.h"
 #include "slam/detect/person_segmenter.h"
 #include "tools/depot/commands.h"
+#include "tools/runner/detector_calibration.h"
 #include "tools/runner/detector_eval.h"
 #include "tools/runner/segmenter_eval.h"
 #include "tools/runner/slam_runner.h"
@@ -35,6 +37,15 @@ struct DetectorArgs {
   std::string class_map;
   size_t every = 1;
   std::string json, report;
+  bool quiet = false;
+};
+
+struct CalibrateArgs {
+  std::vector<std::string> datasets;
+  runner::RunOptions detector;  // detector type, its config and settings
+  std::string class_map;
+  size_t every = 1;
+  std::string output;
   bool quiet = false;
 };
 
@@ -114,6 +125,83 @@ void run_detector_eval(DetectorArgs& a) {
   }
 }
 
+std::string rate_text(const eval::Tally& t) {
+  if (t.total == 0) return "-";
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%.2f", t.rate());
+  return buf;
+}
+
+void run_calibrate(CalibrateArgs& a) {
+  const std::string& type = a.detector.detector;
+  // Everything that can be refused is refused before the first frame.
+  const eval::ClassMapping mapping = runner::class_mapping_for(type, a.class_map);
+  runner::CalibrationRequest request;
+  request.datasets = a.datasets;
+  request.every = a.every;
+  request.mapping = mapping;
+  request.quiet = a.quiet;
+  std::string detector_config = a.detector.detector_config;
+  if (type == "sim") {
+    // The simulated detector fitted to itself: a check of the fit.
+    if (a.datasets.size() != 1)
+      fail("--detector sim", "calibrates against one DATASET (the one it reads)");
+    runner::check_calibration_dataset(a.datasets.front());
+    a.detector.dataset = a.datasets.front();
+    request.base = runner::sim_detector_config(a.detector);
+    request.min_confidence = request.base.min_confidence;
+    request.reads_pixels = false;
+    if (detector_config.empty()) detector_config = runner::default_detector_config("sim");
+  } else {
+    if (detector_config.empty()) detector_config = runner::default_detector_config(type);
+    request.min_confidence = slam::load_detector_config(detector_config).confidence;
+  }
+  check_output_file(a.output);
+  for (const std::string& d : a.datasets) runner::check_calibration_dataset(d);
+  std::unique_ptr<slam::Detector> detector = runner::make_detector(a.detector, type);
+  StagedFile out(a.output);
+
+  std::string config_text;
+  const runner::DetectorCalibration cal =
+      runner::calibrate_sim_detector(*detector, request, config_text);
+  runner::CalibrationMeta meta;
+  meta.detector_type = type;
+  meta.detector_config = detector_config;
+  meta.class_map = mapping.path();
+  meta.every = a.every;
+  meta.command = "depot eval calibrate";
+  for (const std::string& d : a.datasets) meta.command += " " + d;
+  meta.command += " --detector " + type;
+  if (!a.detector.detector_config.empty())
+    meta.command += " --detector-config " + runner::portable_path(a.detector.detector_config);
+  for (const YamlOverride& o : a.detector.detector_overrides)
+    meta.command += " --detector-set " + o.key + "=" + o.value;
+  if (!a.class_map.empty()) meta.command += " --class-map " + runner::portable_path(a.class_map);
+  if (a.every != 1) meta.command += " --every " + std::to_string(a.every);
+  meta.command += " -o " + runner::portable_path(a.output);
+  out.stream() << runner::calibration_file_text(cal, config_text, meta);
+  out.commit();
+
+  std::printf(
+      "%s fitted on %ld boxes in %ld frames (%ld matched, %ld confused, %ld unmatched "
+      "detections):\n%s",
+      cal.detector_name.c_str(), cal.fit.boxes, cal.fit.frames, cal.fit.matched, cal.fit.confused,
+      cal.fit.false_positives, config_text.c_str());
+  std::printf("Recall per class, real detector / fitted simulated detector (%d seeds)\n",
+              cal.sim_seeds);
+  std::printf("  %-8s %6s %10s %10s %10s %10s\n", "class", "boxes", "all real", "all sim",
+              "clear real", "clear sim");
+  for (const std::string& c : cal.classes) {
+    const auto it = cal.per_class.find(c);
+    if (it == cal.per_class.end() || it->second.truth_boxes == 0) continue;
+    const runner::ClassCalibration& pc = it->second;
+    std::printf("  %-8s %6ld %10s %10s %10s %10s\n", c.c_str(), pc.truth_boxes,
+                rate_text(pc.real_all).c_str(), rate_text(pc.sim_all).c_str(),
+                rate_text(pc.real_clear).c_str(), rate_text(pc.sim_clear).c_str());
+  }
+  std::printf("wrote %s\n", a.output.c_str());
+}
+
 void run_segmenter_eval(const SegmenterArgs& a) {
   require_input(a.dataset, a.images);
   std::optional<eval::ImageLabels> labels;
@@ -186,6 +274,36 @@ void register_perception_eval_commands(CLI::App* group) {
                   "Also write a report folder (report.html, report.md, recall-vs-height SVGs)");
   det->add_flag("-q,--quiet", d->quiet, "No progress line");
   det->callback([d] { run_detector_eval(*d); });
+
+  auto c = std::make_shared<CalibrateArgs>();
+  c->detector.detector = "darknet";
+  CLI::App* cal = group->add_subcommand(
+      "calibrate",
+      "Fit the simulated detector's error model to what a real detector does on simulated "
+      "datasets; write it with the measurement (e.g. -o scenes/detectors/sim.yaml)");
+  cal->add_option("DATASET", c->datasets, "Simulated dataset folders (boxes.txt)")->required();
+  cal->add_option("--detector", c->detector.detector,
+                  "darknet (Yolo-Fastest 1.1), xl (Yolo-Fastest 1.1 XL), fastestdet, yolov5, or "
+                  "sim (the simulated detector fitted to itself: a check)")
+      ->check(CLI::IsMember({"darknet", "xl", "fastestdet", "yolov5", "sim"}))
+      ->capture_default_str();
+  cal->add_option("--detector-config", c->detector.detector_config,
+                  "Detector YAML (default: scenes/detectors/ for the type)");
+  cal->add_option_function<std::vector<std::string>>(
+      "--detector-set",
+      [c](const std::vector<std::string>& texts) {
+        for (const auto& t : texts)
+          c->detector.detector_overrides.push_back(parse_yaml_override(t, "--detector-set"));
+      },
+      "With --detector sim: change a key of the detector being fitted (repeatable)");
+  cal->add_option("--class-map", c->class_map,
+                  "Detector label -> class YAML (default: scenes/detectors/coco_to_depot.yaml)");
+  cal->add_option("--every", c->every, "Use every N-th frame of each dataset")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cal->add_option("-o,--output", c->output, "The fitted configuration (YAML)")->required();
+  cal->add_flag("-q,--quiet", c->quiet, "No progress line");
+  cal->callback([c] { run_calibrate(*c); });
 
   auto s = std::make_shared<SegmenterArgs>();
   CLI::App* seg = group->add_subcommand(

@@ -43,7 +43,7 @@ void check_sweep_inputs(const SweepPlan& plan) {
     }
     slam::load_sim_detector_config(
         overrides_to_node(cell_overrides(plan, cell, ParameterTarget::kDetector), "detector"),
-        cell.label + " (detector settings)");
+        cell.label + " (detector settings)", runner::sim_detector_config(runner::RunOptions{}));
     runner::RunOptions options;
     for (const auto& s : cell_overrides(plan, cell, ParameterTarget::kRejection))
       runner::apply_rejection_setting(options, s, cell.label + " (rejection." + s.key + ")");

@@ -33,6 +33,14 @@ std::vector<eval::ScoredDetection> detect(slam::Detector& detector, const cv::Ma
 
 }  // namespace
 
+std::vector<eval::TruthObject> truth_objects(const std::vector<slam::TruthBox>& boxes) {
+  std::vector<eval::TruthObject> objects;
+  objects.reserve(boxes.size());
+  for (const slam::TruthBox& b : boxes)
+    objects.push_back({b.class_name, b.rect(), static_cast<double>(b.visible_pixels)});
+  return objects;
+}
+
 eval::DetectionSide DetectorEval::side(const std::string& name) const {
   return {name, detector, &score, labels, percentile(detect_ms, 0.5)};
 }
@@ -45,7 +53,7 @@ eval::ClassMapping class_mapping_for(const std::string& type, const std::string&
 
 DetectorEval evaluate_on_dataset(slam::Detector& detector, const std::string& dataset,
                                  const eval::ClassMapping& mapping, size_t every, bool reads_pixels,
-                                 bool quiet) {
+                                 bool quiet, const FrameObserver& observe) {
   if (!std::filesystem::exists(std::filesystem::path(dataset) / "boxes.txt"))
     fail(dataset,
          "no ground-truth boxes (boxes.txt): not a simulated dataset (score real images "
@@ -63,11 +71,11 @@ DetectorEval evaluate_on_dataset(slam::Detector& detector, const std::string& da
         reads_pixels ? read_image((std::filesystem::path(dataset) / truth.rgb_files[i]).string(),
                                   ImageRead::kColor)
                      : cv::Mat();
-    std::vector<eval::TruthObject> objects;
-    for (const slam::TruthBox& b : truth.frames[i])
-      objects.push_back({b.class_name, b.rect(), static_cast<double>(b.visible_pixels)});
-    eval.score.add_frame(objects,
-                         detect(detector, bgr, truth.timestamps[i], static_cast<long>(i), eval));
+    const std::vector<eval::TruthObject> objects = truth_objects(truth.frames[i]);
+    const std::vector<eval::ScoredDetection> found =
+        detect(detector, bgr, truth.timestamps[i], static_cast<long>(i), eval);
+    eval.score.add_frame(objects, found);
+    if (observe) observe(i, truth.frames[i], found);
     progress.update(++done, "frame " + std::to_string(i));
   }
   progress.finish();

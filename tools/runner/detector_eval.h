@@ -2,6 +2,7 @@
 // Runs a detector over the frames of a simulated dataset (against its
 // boxes.txt) or over hand-labelled images, and scores it (eval/
 // detection_score.h): what `depot eval detector` and the tests share.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "eval/detection_score.h"
 #include "eval/image_labels.h"
 #include "slam/detect/detection.h"
+#include "slam/detect/truth_boxes.h"
 
 namespace depot::runner {
 
@@ -28,13 +30,23 @@ struct DetectorEval {
 // scenes/detectors/coco_to_depot.yaml.
 eval::ClassMapping class_mapping_for(const std::string& type, const std::string& path);
 
+// The truth boxes as the scoring takes them.
+std::vector<eval::TruthObject> truth_objects(const std::vector<slam::TruthBox>& boxes);
+
+// Sees every scored frame of a dataset: its rgb.txt index, its truth boxes
+// (boxes.txt order) and the detections scored against them.
+using FrameObserver = std::function<void(size_t frame, const std::vector<slam::TruthBox>& truth,
+                                         const std::vector<eval::ScoredDetection>& detections)>;
+
 // Scores `detector` on frames 0, every, 2 every, ... of `dataset`. The
 // mapping's classes must be classes of the dataset (classes.txt). With
 // `reads_pixels` false the frames are not loaded (the simulated detector
-// reads only boxes.txt). Throws depot::Error naming the file at fault.
+// reads only boxes.txt). `observe`, when given, sees every scored frame
+// (`depot eval calibrate` collects its samples so). Throws depot::Error
+// naming the file at fault.
 DetectorEval evaluate_on_dataset(slam::Detector& detector, const std::string& dataset,
                                  const eval::ClassMapping& mapping, size_t every, bool reads_pixels,
-                                 bool quiet);
+                                 bool quiet, const FrameObserver& observe = {});
 
 // Scores `detector` on the images of a labels file (eval/image_labels.h).
 DetectorEval evaluate_on_images(slam::Detector& detector, const eval::ImageLabels& labels,

@@ -26,16 +26,28 @@ namespace fs = std::filesystem;
 
 namespace depot::runner {
 
+std::string default_detector_config(const std::string& type) {
+  if (type == "sim") return project_file("scenes/detectors/sim.yaml");
+  if (type == "darknet") return project_file("scenes/detectors/yolo_fastest.yaml");
+  if (type == "xl") return project_file("scenes/detectors/yolo_fastest_xl.yaml");
+  if (type == "fastestdet") return project_file("scenes/detectors/fastestdet.yaml");
+  if (type == "yolov5") return project_file("scenes/detectors/yolov5s.yaml");
+  fail("--detector",
+       "unknown detector '" + type + "' (expected sim, file, darknet, xl, fastestdet, yolov5)");
+}
+
+slam::SimDetectorConfig sim_detector_config(const RunOptions& o) {
+  slam::SimDetectorConfig config = slam::load_sim_detector_config_file(
+      o.detector_config.empty() ? default_detector_config("sim") : o.detector_config);
+  if (!o.detector_overrides.empty())
+    config = slam::load_sim_detector_config(
+        overrides_to_node(o.detector_overrides, "--detector-set"), "--detector-set", config);
+  config.seed = o.detector_seed;
+  return config;
+}
+
 std::unique_ptr<slam::Detector> make_detector(const RunOptions& o, const std::string& type) {
-  if (type == "sim") {
-    slam::SimDetectorConfig config;
-    if (!o.detector_config.empty()) config = slam::load_sim_detector_config_file(o.detector_config);
-    if (!o.detector_overrides.empty())
-      config = slam::load_sim_detector_config(
-          overrides_to_node(o.detector_overrides, "--detector-set"), "--detector-set", config);
-    config.seed = o.detector_seed;
-    return std::make_unique<slam::SimDetector>(o.dataset, config);
-  }
+  if (type == "sim") return std::make_unique<slam::SimDetector>(o.dataset, sim_detector_config(o));
   if (type == "file") {
     if (o.detections.empty()) fail("--detector file", "needs --detections FILE");
     return std::make_unique<slam::FileDetector>(o.detections);
@@ -47,13 +59,8 @@ std::unique_ptr<slam::Detector> make_detector(const RunOptions& o, const std::st
   if (type != "xl" && std::find(dnn.begin(), dnn.end(), type) == dnn.end())
     fail("--detector",
          "unknown detector '" + type + "' (expected sim, file, darknet, xl, fastestdet, yolov5)");
-  std::string config = o.detector_config;
-  if (config.empty()) {
-    config = type == "darknet"      ? project_file("scenes/detectors/yolo_fastest.yaml")
-             : type == "xl"         ? project_file("scenes/detectors/yolo_fastest_xl.yaml")
-             : type == "fastestdet" ? project_file("scenes/detectors/fastestdet.yaml")
-                                    : project_file("scenes/detectors/yolov5s.yaml");
-  }
+  const std::string config =
+      o.detector_config.empty() ? default_detector_config(type) : o.detector_config;
   const slam::DetectorConfig loaded = slam::load_detector_config(config);
   const std::string expected = type == "xl" ? "darknet" : type;  // XL is a Darknet model
   if (loaded.type != expected)

@@ -11,6 +11,7 @@
 #include "common/tum_io.h"
 #include "common/yaml_overrides.h"
 #include "eval/motion_truth.h"
+#include "slam/detect/sim_detector_config.h"
 #include "slam/reject/rejection_filter.h"
 
 namespace depot::runner {
@@ -58,12 +59,23 @@ struct RunSummary {
   std::string detector_name;
 };
 
+// The configuration file of a detector type when none is given: the shipped
+// scenes/detectors/ YAML (sim: sim.yaml, the error model calibrated to
+// Yolo-Fastest 1.1 by `depot eval calibrate`). Throws depot::Error for an
+// unknown type or `file`.
+std::string default_detector_config(const std::string& type);
+
+// The simulated detector's configuration of a run: options.detector_config
+// (a complete config over the built-in defaults of sim_detector_config.h)
+// or else the shipped sim.yaml, then options.detector_overrides, with
+// options.detector_seed as the seed.
+slam::SimDetectorConfig sim_detector_config(const RunOptions& options);
+
 // The detector `type` names (sim, file, darknet = Yolo-Fastest 1.1, xl =
 // Yolo-Fastest 1.1 XL, fastestdet, yolov5), configured by
-// options.detector_config (default: the shipped scenes/detectors/ YAML; for
-// sim also options.detector_overrides and detector_seed, on
-// options.dataset). Throws depot::Error for an unknown type or a bad
-// configuration.
+// options.detector_config (default: default_detector_config(type); for
+// sim see sim_detector_config(), on options.dataset). Throws depot::Error for an unknown type or a
+// bad configuration.
 std::unique_ptr<slam::Detector> make_detector(const RunOptions& options, const std::string& type);
 
 // The detector and the rejection filter of a run (both empty for `orb`), the
