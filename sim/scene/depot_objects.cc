@@ -140,8 +140,7 @@ std::vector<InstanceGeometry> workbench(const SceneObject& o, Rng& rng) {
 std::vector<InstanceGeometry> desk(const SceneObject& o, Rng& rng) {
   const double L = o.length;
   InstanceGeometry d{o.name, "desk", object_pose(o), {}};
-  d.geoms.push_back(
-      box(V3(kDeskDepth / 2, L / 2, 0.02), V3(0, 0, kDeskTopHeight - 0.02), "desk"));
+  d.geoms.push_back(box(V3(kDeskDepth / 2, L / 2, 0.02), V3(0, 0, kDeskTopHeight - 0.02), "desk"));
   for (double sx : {-1.0, 1.0})
     for (double sy : {-1.0, 1.0})
       d.geoms.push_back(

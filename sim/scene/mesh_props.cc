@@ -91,13 +91,15 @@ PropGeoms MeshProps::place(Model& m, const Eigen::Vector3d& scale, const Eigen::
   for (size_t i = 0; i < m.set.mesh_names.size(); ++i) {
     out.xml += "<geom type=\"mesh\" mesh=\"" + m.prefix + "_s" + std::to_string(it->second) +
                "_mesh" + std::to_string(i) + "\"";
-    if (!m.set.material_names[i].empty()) out.xml += " material=\"" + m.set.material_names[i] + "\"";
+    if (!m.set.material_names[i].empty())
+      out.xml += " material=\"" + m.set.material_names[i] + "\"";
     // Visual only: no contacts and no mass, so the body moves as before.
     out.xml += placement + " contype=\"0\" conaffinity=\"0\" density=\"0\"/>\n";
   }
   for (int c = 0; c < 8; ++c)
-    out.bounds.extend(pose * m.bounds.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c))
-                                 .cwiseProduct(scale));
+    out.bounds.extend(
+        pose *
+        m.bounds.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)).cwiseProduct(scale));
   return out;
 }
 

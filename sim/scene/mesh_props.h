@@ -72,8 +72,8 @@ class MeshProps {
   struct Model {
     std::string prefix;  // unique asset name prefix, "prop_<entry>"
     AssetModel model;
-    MujocoAssetSet set;           // materials, textures, .msh files (meshes at scale 1)
-    Eigen::AlignedBox3d bounds;   // model frame, scale 1
+    MujocoAssetSet set;                 // materials, textures, .msh files (meshes at scale 1)
+    Eigen::AlignedBox3d bounds;         // model frame, scale 1
     std::map<std::string, int> scales;  // "sx sy sz" -> index of its <mesh> set
     std::string mesh_xml;               // <mesh> elements of every scale used
   };
