@@ -71,6 +71,11 @@ TEST(SimMeshProps, ChairAndDeskLabelsAgreeWithDepthAndPoseAndComeFromTheMesh) {
     if (info.class_name != "chair" && info.class_name != "desk") continue;
     const bool chair = info.class_name == "chair";
     const Eigen::AlignedBox3d primitive_extent = primitive.object(info.name).extent;
+    EXPECT_EQ(info.asset, chair                       ? "office_chair"
+                          : info.name == "desk_stage" ? "table"
+                                                      : "desk")
+        << info.name;
+    EXPECT_EQ(primitive.object(info.name).asset, "") << info.name;
     EXPECT_TRUE(info.extent.contains(primitive_extent)) << info.name;
     for (size_t f = 0; f < mesh.frames.size(); f += 3) {
       const Pose pose = chair ? mesh.object_poses[f].at(id).pose : info.pose;

@@ -41,11 +41,16 @@ class Actor {
     (void)t;
     world_poses.clear();
   }
+  // How much a skinned model is scaled about its model origin: the
+  // scenario's size factor (dynamic load); the model's own height is its
+  // appearance.
+  double mesh_scale() const { return mesh_scale_; }
 
  protected:
   std::string name_;
   std::string class_name_;
   std::vector<BodyPart> parts_;
+  double mesh_scale_ = 1.0;
 };
 
 // Where a sitting actor sits: the chair's initial ground pose.

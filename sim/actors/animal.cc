@@ -15,6 +15,7 @@ QuadrupedActor::QuadrupedActor(const ActorSpec& spec) {
   class_name_ = spec.type;
   Rng rng(spec.appearance);
   scale_ = spec.size * rng.uniform(0.9, 1.1);
+  mesh_scale_ = spec.size;
   speed_ = spec.speed;
   offset_ = spec.start_offset;
   start_time_ = spec.start_time;
@@ -60,13 +61,39 @@ Pose QuadrupedActor::root_pose(double t) const {
   return ground_pose(path_.position(d), 0.0, path_.heading(d));
 }
 
+namespace {
+
+// A skinned model's bind bounds plus what its motion adds (legs swung
+// forward and back, wings, a lifted head), in the root frame.
+Eigen::AlignedBox3d with_model(Eigen::AlignedBox3d box, const ClipRig* rig, double scale,
+                               double margin) {
+  if (!rig) return box;
+  const Eigen::AlignedBox3f& b = rig->model().bounds;
+  box.extend(scale * b.min().cast<double>() - Eigen::Vector3d::Constant(margin));
+  box.extend(scale * b.max().cast<double>() + Eigen::Vector3d::Constant(margin));
+  return box;
+}
+
+}  // namespace
+
 Eigen::AlignedBox3d QuadrupedActor::local_extent() const {
   const double s = scale_;
   const double front = b_.body_half_length + b_.body_radius + 2.5 * b_.head_radius;
   const double back = b_.body_half_length + b_.body_radius + b_.tail_length;
-  return Eigen::AlignedBox3d(
+  const Eigen::AlignedBox3d box(
       Eigen::Vector3d(-back - 0.05, -0.3, 0.0) * s,
       Eigen::Vector3d(front + 0.05, 0.3, b_.body_height + 2.5 * b_.head_radius + 0.1) * s);
+  return with_model(box, rig_.get(), mesh_scale_, 0.15);
+}
+
+void QuadrupedActor::pose_bones(double t, std::vector<Pose>& world_poses) const {
+  world_poses.clear();
+  if (!rig_) return;
+  AnimalMotion m;
+  m.walking = t >= start_time_ && speed_ > 0.0;
+  m.cycles = (distance(t) - offset_) / (rig_->stride() * mesh_scale_) + gait_phase_ / (2.0 * M_PI);
+  m.time = t;
+  rig_->pose(m, root_pose(t), mesh_scale_, world_poses);
 }
 
 void QuadrupedActor::pose_parts(double t, std::vector<Pose>& out) const {
@@ -114,6 +141,7 @@ BirdActor::BirdActor(const ActorSpec& spec) {
   class_name_ = "bird";
   Rng rng(spec.appearance);
   scale_ = spec.size * rng.uniform(0.9, 1.1);
+  mesh_scale_ = spec.size;
   speed_ = spec.speed;
   offset_ = spec.start_offset;
   start_time_ = spec.start_time;
@@ -141,8 +169,20 @@ Pose BirdActor::root_pose(double t) const {
 
 Eigen::AlignedBox3d BirdActor::local_extent() const {
   const double s = scale_;
-  return Eigen::AlignedBox3d(Eigen::Vector3d(-0.3, -0.32, -0.2) * s,
-                             Eigen::Vector3d(0.3, 0.32, 0.2) * s);
+  const Eigen::AlignedBox3d box(Eigen::Vector3d(-0.3, -0.32, -0.2) * s,
+                                Eigen::Vector3d(0.3, 0.32, 0.2) * s);
+  return with_model(box, rig_.get(), mesh_scale_, 0.3);
+}
+
+void BirdActor::pose_bones(double t, std::vector<Pose>& world_poses) const {
+  world_poses.clear();
+  if (!rig_) return;
+  AnimalMotion m;
+  m.time = t + phase_;
+  // The model's bind pose stands on z = 0: lift its body to the flight height.
+  Pose root = root_pose(t);
+  root.translation().z() -= 0.5 * mesh_scale_ * rig_->model().bounds.max().z();
+  rig_->pose(m, root, mesh_scale_, world_poses);
 }
 
 void BirdActor::pose_parts(double t, std::vector<Pose>& out) const {

@@ -38,6 +38,7 @@ HumanActor::HumanActor(const ActorSpec& spec, const SeatPose* seat) {
   class_name_ = "person";
   Rng rng(spec.appearance);
   scale_ = spec.size * rng.uniform(0.92, kLargestScale);
+  mesh_scale_ = spec.size;
   speed_ = spec.speed;
   offset_ = spec.start_offset;
   start_time_ = spec.start_time;
@@ -107,8 +108,8 @@ Eigen::AlignedBox3d HumanActor::local_extent() const {
     // plus what the gait adds: a leg or arm swung forward, a seated person's
     // thighs.
     const Eigen::AlignedBox3f& b = rig_->model().bounds;
-    box.extend(b.min().cast<double>() - Eigen::Vector3d(0.3, 0.1, 0.0));
-    box.extend(b.max().cast<double>() + Eigen::Vector3d(0.6, 0.1, 0.1));
+    box.extend(mesh_scale_ * b.min().cast<double>() - Eigen::Vector3d(0.3, 0.1, 0.0));
+    box.extend(mesh_scale_ * b.max().cast<double>() + Eigen::Vector3d(0.6, 0.1, 0.1));
   }
   return box;
 }
@@ -165,7 +166,7 @@ void HumanActor::pose_bones(double t, std::vector<Pose>& world_poses) const {
     world_poses.clear();
     return;
   }
-  rig_->pose(posture(t), root_pose(t), world_poses);
+  rig_->pose(posture(t), root_pose(t), mesh_scale_, world_poses);
 }
 
 void HumanActor::pose_parts(double t, std::vector<Pose>& out) const {

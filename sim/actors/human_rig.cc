@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/error.h"
+#include "sim/actors/bone_poses.h"
 
 namespace depot::sim {
 namespace {
@@ -108,18 +109,13 @@ void HumanRig::globals(const HumanPosture& p, std::vector<Eigen::Affine3d>& out)
   bone_globals(sk, pose, out);
 }
 
-void HumanRig::pose(const HumanPosture& p, const Pose& root, std::vector<Pose>& world) const {
+void HumanRig::pose(const HumanPosture& p, const Pose& root, double scale,
+                    std::vector<Pose>& world) const {
   std::vector<Eigen::Affine3d> g;
-  globals(p, g);
-  world.resize(body_bones_.size());
-  for (size_t i = 0; i < body_bones_.size(); ++i) {
-    const Eigen::Affine3d& b = g[body_bones_[i]];
-    // Mocap bodies are rigid: drop any scale the file's nodes carry.
-    Pose rigid = Pose::Identity();
-    rigid.linear() = Eigen::Quaterniond(b.linear()).normalized().toRotationMatrix();
-    rigid.translation() = b.translation();
-    world[i] = root * rigid;
-  }
+  HumanPosture scaled = p;
+  scaled.seat_height = p.seat_height / scale;  // in the unscaled model's metres
+  globals(scaled, g);
+  world_bone_poses(g, body_bones_, root, scale, world);
 }
 
 }  // namespace depot::sim

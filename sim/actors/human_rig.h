@@ -39,8 +39,9 @@ class HumanRig {
 
   // Skeleton globals (model frame, feet on z = 0 while walking) for a posture.
   void globals(const HumanPosture& p, std::vector<Eigen::Affine3d>& out) const;
-  // World poses of body_bones() with the model frame at `root`.
-  void pose(const HumanPosture& p, const Pose& root, std::vector<Pose>& world) const;
+  // World poses of body_bones() with the model frame at `root`, the model
+  // scaled by `scale` (a seated person's hips still rest on the seat).
+  void pose(const HumanPosture& p, const Pose& root, double scale, std::vector<Pose>& world) const;
 
  private:
   std::shared_ptr<const AssetModel> model_;

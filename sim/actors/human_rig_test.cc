@@ -40,8 +40,17 @@ TEST(HumanRig, KnownLegPostureMovesTheFootBodyWhereTheAnglesSay) {
   p.knee[0] = deg(20.0);
   const Pose root = ground_pose(Eigen::Vector2d(1.0, 2.0), 0.0, deg(90.0));
   std::vector<Pose> bodies;
-  rig.pose(p, root, bodies);
+  rig.pose(p, root, 1.0, bodies);
   ASSERT_EQ(bodies.size(), rig.body_bones().size());
+  // A person of size 1.25 (dynamic load) is the same pose scaled about the
+  // model's origin between the feet.
+  std::vector<Pose> large;
+  rig.pose(p, root, 1.25, large);
+  for (size_t i = 0; i < bodies.size(); ++i)
+    EXPECT_LT((root.inverse() * large[i].translation() -
+               1.25 * (root.inverse() * bodies[i].translation()))
+                  .norm(),
+              1e-9);
 
   // The same chain as limb() in sim/actors/limb.h: pitch forward = rot_y(-pitch).
   const Eigen::Vector3d knee_now = hip + rot_y(-p.hip[0]) * (knee - hip);

@@ -16,9 +16,9 @@ namespace fs = std::filesystem;
 namespace depot::sim {
 namespace {
 
-const std::set<std::string> kKeys = {"file",      "class",   "label_class",   "up",
-                                     "forward",   "scale",   "target_height", "clips",
-                                     "clip_file", "colours", "center"};
+const std::set<std::string> kKeys = {
+    "file",  "class",     "label_class", "up",     "forward", "scale", "target_height",
+    "clips", "clip_file", "colours",     "center", "stride",  "legs"};
 
 std::string resolve_file(const YAML::Node& value, const std::string& catalog_dir,
                          const std::string& where, const std::string& key) {
@@ -109,6 +109,20 @@ CatalogAsset read_entry(const std::string& name, const YAML::Node& node,
   if (!a.clip_file.empty() && a.clips.empty()) fail(where, "'clip_file' without 'clips'");
   if (a.clip_file.empty())
     for (const auto& [role, clip] : a.clips) a.options.clips.push_back(clip);
+
+  if (node["stride"]) a.stride = positive(node["stride"], where, "stride");
+  if (const YAML::Node legs = node["legs"]) {
+    const std::string form =
+        "'legs' lists four legs (front left, front right, back left, back right), each "
+        "[hip bone] or [hip bone, foot bone]";
+    if (!legs.IsSequence() || legs.size() != 4) fail(where, form);
+    for (const auto& leg : legs) {
+      if (!leg.IsSequence() || leg.size() < 1 || leg.size() > 2) fail(where, form);
+      std::vector<std::string> bones;
+      for (const auto& b : leg) bones.push_back(b.as<std::string>());
+      a.legs.push_back(bones);
+    }
+  }
 
   if (const YAML::Node colours = node["colours"]) {
     if (!colours.IsMap()) fail(where, "'colours' must map material names to colours");

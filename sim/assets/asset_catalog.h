@@ -24,6 +24,13 @@ struct CatalogAsset {
   std::map<std::string, std::string> clips;  // role (walk, idle...) -> clip name
   std::string clip_file;  // resolved file holding the clips (bones matched by name), or ""
   std::map<std::string, Eigen::Vector4f> colours;  // material name -> sRGB rgba
+  // Metres of ground one cycle of the walk clip covers (0: not given).
+  double stride = 0;
+  // Legs swung procedurally when the file has no walk clip: per leg the bone
+  // at the hip and, optionally, a foot bone that is not its descendant (IK
+  // rigs) and is carried along; front left, front right, back left, back
+  // right.
+  std::vector<std::vector<std::string>> legs;
 };
 
 struct AssetCatalog {

@@ -37,7 +37,7 @@ std::string objects_json(const std::string& scenario_name, const std::vector<Ins
                          const ClassTable& classes) {
   nlohmann::json objects = nlohmann::json::array();
   for (const Instance& inst : instances) {
-    objects.push_back(
+    nlohmann::json o(
         {{"id", inst.id},
          {"name", inst.name},
          {"class", inst.class_name},
@@ -48,6 +48,8 @@ std::string objects_json(const std::string& scenario_name, const std::vector<Ins
          {"extent",
           {{"min", {inst.extent.min().x(), inst.extent.min().y(), inst.extent.min().z()}},
            {"max", {inst.extent.max().x(), inst.extent.max().y(), inst.extent.max().z()}}}}});
+    if (!inst.asset.empty()) o["asset"] = inst.asset;
+    objects.push_back(std::move(o));
   }
   nlohmann::json doc = {{"scenario", scenario_name}, {"instances", objects}};
   return doc.dump(1) + "\n";

@@ -88,6 +88,8 @@ struct Scenario {
   std::string source_path;  // the YAML file
   std::string scene_path;   // scene layout YAML
   std::string classes_path;
+  // Asset catalogue the mesh style draws from (assets/catalog.yaml form).
+  std::string asset_catalog_path;
   uint64_t seed = 1;
   // `seed_world`: fixes the world (scene fill, textures, actor timing, lanes
   // and variants) independently of `seed`; unset, the seed draws both.

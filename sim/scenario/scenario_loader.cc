@@ -260,8 +260,8 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
   for (const auto& o : overrides) apply_yaml_override(root, o, path + " (--set " + o.key + ")");
   Fields top(root, path, "scenario");
   top.allow_only({"name", "description", "scene", "classes", "seed", "seed_world", "frames",
-                  "shadows", "dynamic_load", "style", "actors_style", "props_style", "camera",
-                  "motion", "timestamps", "sensor", "actors"});
+                  "shadows", "dynamic_load", "style", "actors_style", "props_style",
+                  "asset_catalog", "camera", "motion", "timestamps", "sensor", "actors"});
 
   Scenario s;
   s.source_path = path;
@@ -272,6 +272,8 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
   s.scene_path = top.has("scene") ? top.existing_file("scene") : project_file("scenes/depot.yaml");
   s.classes_path =
       top.has("classes") ? top.existing_file("classes") : project_file("scenes/classes.yaml");
+  s.asset_catalog_path = top.has("asset_catalog") ? top.existing_file("asset_catalog")
+                                                  : project_file("assets/catalog.yaml");
   s.seed = top.get<uint64_t>("seed", 1);
   if (top.has("seed_world")) s.seed_world = top.get<uint64_t>("seed_world", 0);
   s.frames = static_cast<int>(top.number("frames", 300, 1, 1e6));

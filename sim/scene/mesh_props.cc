@@ -61,6 +61,7 @@ MeshProps::Model& MeshProps::model(const CatalogAsset& asset) {
   auto it = by_name_.find(asset.name);
   if (it != by_name_.end()) return *it->second;
   auto m = std::make_unique<Model>();
+  m->name = asset.name;
   m->prefix = "prop_" + asset.name;
   m->model = load_catalog_asset(catalog(), asset);
   m->set = encode_for_mujoco(m->model, m->prefix);
@@ -85,6 +86,7 @@ PropGeoms MeshProps::place(Model& m, const Eigen::Vector3d& scale, const Eigen::
     }
   }
   PropGeoms out;
+  out.asset = m.name;
   const Eigen::Quaterniond q(pose.linear());
   const std::string placement = " pos=\"" + vec(pose.translation()) + "\" quat=\"" + num(q.w()) +
                                 " " + num(q.x()) + " " + num(q.y()) + " " + num(q.z()) + "\"";

@@ -29,6 +29,7 @@ namespace depot::sim {
 struct PropGeoms {
   std::string xml;             // <geom type="mesh" .../> elements for the body
   Eigen::AlignedBox3d bounds;  // the placed, scaled meshes' bounds
+  std::string asset;           // the catalogue entry drawn
 };
 
 // The height of a chair model's seat: the highest vertex within 0.15 m of
@@ -70,6 +71,7 @@ class MeshProps {
 
  private:
   struct Model {
+    std::string name;    // catalogue entry
     std::string prefix;  // unique asset name prefix, "prop_<entry>"
     AssetModel model;
     MujocoAssetSet set;                 // materials, textures, .msh files (meshes at scale 1)

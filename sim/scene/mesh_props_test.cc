@@ -130,6 +130,11 @@ TEST(MeshProps, SceneLoadsEachModelOnceAndKeepsThePhysics) {
     EXPECT_TRUE(b.extent.contains(a.extent)) << name;
   }
   EXPECT_NEAR(instance(mesh, "chair_a").extent.max().z(), 1.048, 0.003);
+  EXPECT_EQ(instance(mesh, "chair_a").asset, "office_chair");
+  EXPECT_EQ(instance(mesh, "desk_stage").asset, "table");
+  EXPECT_EQ(instance(mesh, "desk_office").asset, "desk");
+  EXPECT_EQ(instance(mesh, "desk_stage_monitor").asset, "");
+  EXPECT_EQ(instance(primitive, "chair_a").asset, "");
   EXPECT_NEAR(instance(mesh, "desk_stage").extent.max().z(), 0.78, 1e-6) << "the papers on top";
 
   // Compiled: the same masses and inertias, the primitives hidden but

@@ -12,6 +12,7 @@
 #include "common/config_path.h"
 #include "common/error.h"
 #include "common/rng.h"
+#include "sim/actors/animal.h"
 #include "sim/actors/human.h"
 #include "sim/actors/limb.h"
 #include "sim/assets/asset_catalog.h"
@@ -174,44 +175,65 @@ void check_pusher_start(const ActorSpec& a, const Instance& target,
                   " m further behind it");
 }
 
-// Person variants of the asset catalogue, each loaded and encoded once per
-// scene however many actors wear it.
-class PersonVariants {
+// Skinned variants of the asset catalogue (people and animals), each loaded
+// and encoded once per scene however many actors wear it.
+class MeshVariants {
  public:
-  explicit PersonVariants(const ClassTable& classes) : classes_(classes) {}
+  MeshVariants(const ClassTable& classes, std::string catalog_path)
+      : classes_(classes), catalog_path_(std::move(catalog_path)) {}
 
   struct Variant {
+    std::string asset;  // the catalogue entry
     std::string prefix;
-    std::shared_ptr<const HumanRig> rig;
+    std::shared_ptr<const HumanRig> human;  // a person's rig, or
+    std::shared_ptr<const ClipRig> animal;  // an animal's
     SkinMaterials materials;
+    const AssetModel& model() const { return human ? human->model() : animal->model(); }
+    const std::vector<int>& body_bones() const {
+      return human ? human->body_bones() : animal->body_bones();
+    }
   };
 
-  // The variant an actor wears: fixed by its appearance seed, so the same
-  // scenario and seed always dress the same people.
-  const Variant& pick(uint64_t appearance) {
-    if (!catalog_) {
-      catalog_ = std::make_unique<AssetCatalog>(
-          load_asset_catalog(project_file("assets/catalog.yaml"), classes_));
-      people_ = catalog_assets_of_class(*catalog_, "person");
-      if (people_.empty()) fail(catalog_->path, "no asset plays class 'person'");
+  // The variant an actor of `class_name` wears, or nullptr when no asset
+  // plays that class: drawn by its appearance seed, moved on to the next
+  // variant no actor of the scene wears yet while there is one (so three
+  // people are three different people). Actors are dressed in file order, so
+  // the same scenario and seed always dress the same actors.
+  const Variant* pick(const std::string& class_name, uint64_t appearance) {
+    if (!catalog_)
+      catalog_ = std::make_unique<AssetCatalog>(load_asset_catalog(catalog_path_, classes_));
+    const std::vector<const CatalogAsset*> assets = catalog_assets_of_class(*catalog_, class_name);
+    if (assets.empty()) return nullptr;
+    size_t i = Rng(derive_seed(appearance, 0x6d657368)).below(assets.size());
+    for (size_t k = 0; k < assets.size(); ++k) {
+      const size_t j = (i + k) % assets.size();
+      if (!variants_.count(assets[j]->name)) {
+        i = j;
+        break;
+      }
     }
-    const size_t i = Rng(derive_seed(appearance, 0x6d657368)).below(people_.size());
-    auto it = variants_.find(i);
-    if (it != variants_.end()) return it->second;
+    const CatalogAsset& entry = *assets[i];
+    auto it = variants_.find(entry.name);
+    if (it != variants_.end()) return &it->second;
     Variant v;
-    v.prefix = "person_" + people_[i]->name;
-    v.rig = std::make_shared<const HumanRig>(
-        std::make_shared<const AssetModel>(load_catalog_asset(*catalog_, *people_[i])));
-    v.materials = encode_skin_materials(v.rig->model(), v.prefix);
-    return variants_.emplace(i, std::move(v)).first->second;
+    v.asset = entry.name;
+    v.prefix = class_name + "_" + entry.name;
+    auto model = std::make_shared<const AssetModel>(load_catalog_asset(*catalog_, entry));
+    if (class_name == "person")
+      v.human = std::make_shared<const HumanRig>(model);
+    else
+      v.animal = std::make_shared<const ClipRig>(
+          model, entry, class_name == "bird" ? ClipRig::Gait::kFly : ClipRig::Gait::kWalk);
+    v.materials = encode_skin_materials(*model, v.prefix);
+    return &variants_.emplace(entry.name, std::move(v)).first->second;
   }
-  const std::map<size_t, Variant>& used() const { return variants_; }
+  const std::map<std::string, Variant>& used() const { return variants_; }
 
  private:
   const ClassTable& classes_;
+  std::string catalog_path_;
   std::unique_ptr<AssetCatalog> catalog_;
-  std::vector<const CatalogAsset*> people_;
-  std::map<size_t, Variant> variants_;
+  std::map<std::string, Variant> variants_;
 };
 
 }  // namespace
@@ -282,7 +304,7 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
   // Furniture props as catalogue meshes (props_style: mesh): desks here,
   // chairs among the pushables; each model loaded and encoded once.
   const bool mesh_props = scenario.props_style == "mesh";
-  MeshProps props(classes, project_file("assets/catalog.yaml"));
+  MeshProps props(classes, scenario.asset_catalog_path);
 
   // Static furniture: one fixed body per instance.
   for (const SceneObject& object : layout.objects) {
@@ -297,6 +319,7 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
       if (mesh_props && object.type == "desk" && g.class_name == "desk") {
         mesh = props.desk(object, context);
         inst.extent.extend(mesh.bounds);
+        inst.asset = mesh.asset;
       }
       x << "<body name=\"" << body << "\" pos=\"" << vec(g.pose.translation()) << "\" quat=\""
         << quat(g.pose.linear()) << "\">\n";
@@ -326,6 +349,7 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
     if (mesh_props && a.type == "chair") {
       mesh = props.chair();
       inst.extent.extend(mesh.bounds);
+      inst.asset = mesh.asset;
     }
     x << "<body name=\"" << body << "\" pos=\"" << vec(inst.pose.translation()) << "\" quat=\""
       << quat(inst.pose.linear()) << "\">\n<freejoint/>\n";
@@ -342,7 +366,7 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
   std::vector<std::pair<std::string, std::string>> plate_welds;  // plate body, mocap target
   std::vector<std::string> pending_plates;
   const bool mesh_style = scenario.actors_style == "mesh";
-  PersonVariants variants(classes);
+  MeshVariants variants(classes, scenario.asset_catalog_path);
   std::string skins;  // <skin> elements, written in a second <asset> section
   for (const ActorSpec& a : scenario.actors) {
     if (!is_living_actor(a.type)) continue;
@@ -366,15 +390,18 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
           check_pusher_start(a, target, pushable_solids.at(target.name), where);
     }
     std::unique_ptr<Actor> actor = make_actor(a, seat_ptr);
-    const PersonVariants::Variant* variant = nullptr;
-    if (mesh_style)
-      if (auto* human = dynamic_cast<HumanActor*>(actor.get())) {
-        variant = &variants.pick(a.appearance);
-        human->use_mesh(variant->rig);
-      }
+    const MeshVariants::Variant* variant =
+        mesh_style ? variants.pick(actor->class_name(), a.appearance) : nullptr;
+    if (variant) {
+      if (auto* human = dynamic_cast<HumanActor*>(actor.get())) human->use_mesh(variant->human);
+      if (auto* animal = dynamic_cast<QuadrupedActor*>(actor.get()))
+        animal->use_mesh(variant->animal);
+      if (auto* bird = dynamic_cast<BirdActor*>(actor.get())) bird->use_mesh(variant->animal);
+    }
     Instance& inst = add_instance(a.name, actor->class_name(), InstanceKind::kActor,
                                   where + ": actor '" + a.name + "'");
     inst.actor = static_cast<int>(model.actors.size());
+    if (variant) inst.asset = variant->asset;
     inst.pose = actor->root_pose(0.0);
     inst.extent = actor->local_extent();
     std::vector<Pose> poses;
@@ -391,7 +418,7 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
       g.conaffinity = 0;
       x << "<body name=\"" << body << "\" mocap=\"true\" pos=\"" << vec(poses[i].translation())
         << "\" quat=\"" << quat(poses[i].linear()) << "\">\n";
-      // A skinned person keeps its parts' mocap bodies without geoms.
+      // A skinned actor keeps its parts' mocap bodies without geoms.
       if (!part.pusher && !variant) write_geom(x, g);
       x << "</body>\n";
       if (part.pusher) {
@@ -416,9 +443,10 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
       // Bone bodies come after the parts: World poses them in this order.
       actor->pose_bones(0.0, poses);
       std::vector<std::string> bones;
-      x << bone_bodies_xml(*variant->rig, poses, "actor/" + a.name + "/bone", bones);
-      skins += skins_xml(*variant->rig, variant->materials.material_names, bones, "actor/" + a.name,
-                         inst.skins);
+      x << bone_bodies_xml(variant->model(), variant->body_bones(), poses,
+                           "actor/" + a.name + "/bone", bones);
+      skins += skins_xml(variant->model(), variant->body_bones(), actor->mesh_scale(),
+                         variant->materials.material_names, bones, "actor/" + a.name, inst.skins);
       for (auto& b : bones) inst.bodies.push_back(b);
     }
     model.actors.push_back(std::move(actor));

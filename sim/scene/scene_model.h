@@ -29,6 +29,7 @@ struct Instance {
   Eigen::AlignedBox3d extent;       // bounds in the instance's own frame
   std::vector<std::string> bodies;  // MuJoCo body names that belong to it
   std::vector<std::string> skins;   // MuJoCo skins drawn for it (mesh-style actors)
+  std::string asset;                // catalogue entry it is drawn from; "" for primitives
   int actor = -1;                   // index into SceneModel::actors
 };
 

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "sim/actors/bone_poses.h"
 #include "sim/assets/mujoco_mesh.h"
 #include "sim/assets/skinning.h"
 
@@ -19,14 +20,6 @@ void put(std::string& out, double v) {
 std::string trimmed(std::string s) {
   if (!s.empty() && s.back() == ' ') s.pop_back();
   return s;
-}
-
-// A bone's rigid pose from a global transform (mocap bodies cannot scale).
-Pose rigid(const Eigen::Affine3d& a) {
-  Pose p = Pose::Identity();
-  p.linear() = Eigen::Quaterniond(a.linear()).normalized().toRotationMatrix();
-  p.translation() = a.translation();
-  return p;
 }
 
 }  // namespace
@@ -46,12 +39,13 @@ SkinMaterials encode_skin_materials(const AssetModel& model, const std::string& 
   return out;
 }
 
-std::string bone_bodies_xml(const HumanRig& rig, const std::vector<Pose>& poses,
-                            const std::string& prefix, std::vector<std::string>& bodies) {
+std::string bone_bodies_xml(const AssetModel& model, const std::vector<int>& body_bones,
+                            const std::vector<Pose>& poses, const std::string& prefix,
+                            std::vector<std::string>& bodies) {
   std::string x;
-  const Skeleton& sk = rig.model().skeleton;
-  for (size_t i = 0; i < rig.body_bones().size(); ++i) {
-    const std::string name = prefix + "/" + sk.bones[rig.body_bones()[i]].name;
+  const Skeleton& sk = model.skeleton;
+  for (size_t i = 0; i < body_bones.size(); ++i) {
+    const std::string name = prefix + "/" + sk.bones[body_bones[i]].name;
     bodies.push_back(name);
     const Eigen::Quaterniond q(poses[i].linear());
     std::string pos, quat;
@@ -63,18 +57,17 @@ std::string bone_bodies_xml(const HumanRig& rig, const std::vector<Pose>& poses,
   return x;
 }
 
-std::string skins_xml(const HumanRig& rig, const std::vector<std::string>& material_names,
+std::string skins_xml(const AssetModel& model, const std::vector<int>& body_bones, double scale,
+                      const std::vector<std::string>& material_names,
                       const std::vector<std::string>& bodies, const std::string& prefix,
                       std::vector<std::string>& skins) {
-  const AssetModel& model = rig.model();
   const Skeleton& sk = model.skeleton;
   // The skin's bind pose is the bones' rest globals: there the skinning
   // matrices are identity and the vertices are the file's bind mesh.
   std::vector<Eigen::Affine3d> rest;
   bone_globals(sk, rest_pose(sk), rest);
   std::vector<int> body_of_bone(sk.bones.size(), -1);
-  for (size_t i = 0; i < rig.body_bones().size(); ++i)
-    body_of_bone[rig.body_bones()[i]] = static_cast<int>(i);
+  for (size_t i = 0; i < body_bones.size(); ++i) body_of_bone[body_bones[i]] = static_cast<int>(i);
 
   std::string x;
   for (size_t m = 0; m < model.meshes.size(); ++m) {
@@ -84,7 +77,7 @@ std::string skins_xml(const HumanRig& rig, const std::vector<std::string>& mater
     skins.push_back(name);
     std::string vertex, texcoord, face;
     for (const auto& v : mesh.positions)
-      for (int k = 0; k < 3; ++k) put(vertex, v[k]);
+      for (int k = 0; k < 3; ++k) put(vertex, scale * v[k]);
     for (const auto& uv : mesh.uvs)
       for (int k = 0; k < 2; ++k) put(texcoord, uv[k]);
     for (const auto& t : mesh.triangles)
@@ -95,7 +88,7 @@ std::string skins_xml(const HumanRig& rig, const std::vector<std::string>& mater
     if (!mesh.uvs.empty()) x += " texcoord=\"" + trimmed(texcoord) + "\"";
     x += " face=\"" + trimmed(face) + "\">\n";
     // Per bone: the vertices it moves and their weights.
-    std::vector<std::string> ids(rig.body_bones().size()), weights(rig.body_bones().size());
+    std::vector<std::string> ids(body_bones.size()), weights(body_bones.size());
     for (size_t v = 0; v < mesh.positions.size(); ++v) {
       const VertexBones& vb = mesh.bones[v];
       for (int k = 0; k < 4; ++k) {
@@ -108,10 +101,10 @@ std::string skins_xml(const HumanRig& rig, const std::vector<std::string>& mater
     }
     for (size_t b = 0; b < ids.size(); ++b) {
       if (ids[b].empty()) continue;  // MuJoCo wants vertices on every bone of a skin
-      const Pose bind = rigid(rest[rig.body_bones()[b]]);
+      const Pose bind = rigid_bone_pose(rest[body_bones[b]]);
       const Eigen::Quaterniond q(bind.linear());
       std::string pos, quat;
-      for (int k = 0; k < 3; ++k) put(pos, bind.translation()[k]);
+      for (int k = 0; k < 3; ++k) put(pos, scale * bind.translation()[k]);
       for (double v : {q.w(), q.x(), q.y(), q.z()}) put(quat, v);
       x += "<bone body=\"" + bodies[b] + "\" bindpos=\"" + trimmed(pos) + "\" bindquat=\"" +
            trimmed(quat) + "\" vertid=\"" + trimmed(ids[b]) + "\" vertweight=\"" +

@@ -73,6 +73,7 @@ Dataset read_dataset(const std::string& root) {
     info.id = o["id"];
     info.name = o["name"];
     info.class_name = o["class"];
+    info.asset = o.value("asset", "");
     info.category = o["category"];
     info.kind = o["kind"];
     info.pose = pose_of(o["pose"]);

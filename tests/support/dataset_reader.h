@@ -21,6 +21,7 @@ struct Calibration {
 struct ObjectInfo {
   int id = 0;
   std::string name, class_name, category, kind;
+  std::string asset;  // catalogue entry of a mesh-style actor, or ""
   Pose pose = Pose::Identity();
   Eigen::AlignedBox3d extent;
 };

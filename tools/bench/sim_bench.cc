@@ -1,7 +1,9 @@
 // depot_sim_bench: frames per second of the simulator's stages and end to
 // end (render + labels + writing) at the scenario's resolution. Figures are
 // also given as ratios to the raw MuJoCo RGB+depth render measured in the
-// same run, so they compare across machines.
+// same run, so they compare across machines. Then both actor styles end to
+// end (mesh as a ratio to primitive, measured in the same run) and the
+// resident memory of a long sequence, early and at its end.
 #include <unistd.h>
 
 #include <chrono>
@@ -30,6 +32,43 @@ double ms(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
+// Resident set size of this process (MB).
+double rss_mb() {
+  long pages = 0, resident = 0;
+  if (FILE* f = std::fopen("/proc/self/statm", "r")) {
+    if (std::fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = 0;
+    std::fclose(f);
+  }
+  return resident * static_cast<double>(sysconf(_SC_PAGESIZE)) / 1e6;
+}
+
+// End-to-end frames per second, as `depot sim render` runs it.
+double end_to_end_fps(const depot::sim::Scenario& scenario, int writers, double* mb_written) {
+  const std::string out =
+      (fs::temp_directory_path() / ("depot_sim_bench_" + std::to_string(getpid()))).string();
+  depot::sim::RenderRequest request;
+  request.dataset.output = out;
+  request.dataset.writer_threads = writers;
+  request.progress = false;
+  const depot::sim::RenderSummary s = depot::sim::render_dataset(scenario, request);
+  fs::remove_all(out);
+  if (mb_written) *mb_written = s.bytes / 1e6;
+  return s.frames / s.seconds;
+}
+
+// Resident memory after a tenth of the frames and after all of them, while
+// rendering (no writing) `frames` frames.
+std::pair<double, double> sequence_memory(depot::sim::Scenario scenario, int frames) {
+  scenario.frames = frames;
+  depot::sim::SimulatedSequence sequence(scenario, depot::sim::GlBackend::kOsMesa);
+  depot::sim::RenderedFrame frame;
+  depot::sim::FrameTruth truth;
+  double early = 0;
+  for (int i = 0; sequence.next(frame, truth, nullptr); ++i)
+    if (i == frames / 10) early = rss_mb();
+  return {early, rss_mb()};
+}
+
 void row(const char* stage, double ms_per_frame, double baseline_ms) {
   std::printf("  %-34s %8.2f ms/frame %8.1f fps %8.2fx\n", stage, ms_per_frame,
               1000.0 / ms_per_frame, baseline_ms / ms_per_frame);
@@ -42,7 +81,11 @@ int main(int argc, char** argv) {
   std::string scenario_path = std::string(DEPOT_SOURCE_DIR) + "/scenarios/depot_walking_xyz.yaml";
   int frames = 150;
   int writers = 2;
+  int memory_frames = 1800;
   app.add_option("--scenario", scenario_path, "Scenario YAML");
+  app.add_option("--memory-frames", memory_frames,
+                 "Frames of the memory run per actor style (0: skip it)")
+      ->check(CLI::Range(0, 100000));
   app.add_option("--frames", frames, "Frames per measurement")->check(CLI::Range(10, 100000));
   app.add_option("--writers", writers, "Writer threads for the end-to-end run")
       ->check(CLI::Range(1, 32));
@@ -86,15 +129,8 @@ int main(int argc, char** argv) {
     const double n = frames;
     const double base = render / n;
 
-    // End to end, as `depot sim render` runs it.
-    const std::string out =
-        (fs::temp_directory_path() / ("depot_sim_bench_" + std::to_string(getpid()))).string();
-    depot::sim::RenderRequest request;
-    request.dataset.output = out;
-    request.dataset.writer_threads = writers;
-    request.progress = false;
-    depot::sim::RenderSummary s = depot::sim::render_dataset(scenario, request);
-    fs::remove_all(out);
+    double mb_written = 0;
+    const double fps = end_to_end_fps(scenario, writers, &mb_written);
 
     std::printf("depot_sim_bench: %s, %d frames at %dx%d, Kinect sensor model, %d writer threads\n",
                 scenario.name.c_str(), frames, scenario.camera.width, scenario.camera.height,
@@ -111,9 +147,26 @@ int main(int argc, char** argv) {
     const double serial =
         (physics + render + labels + convert + sensor + png_rgb + png_depth + png_labels) / n;
     row("sum of stages (one core)", serial, base);
-    row("end to end (render + labels + write)", 1000.0 * s.seconds / s.frames, base);
-    std::printf("  end to end: %.1f fps (target >= 25 fps at 640x480), %.1f MB written\n",
-                s.frames / s.seconds, s.bytes / 1e6);
+    row("end to end (render + labels + write)", 1000.0 / fps, base);
+    std::printf("  end to end: %.1f fps (target >= 25 fps at 640x480), %.1f MB written\n", fps,
+                mb_written);
+
+    // Actor styles side by side, same scenario and frames.
+    std::printf("actor styles (scenario's style: %s)\n", scenario.actors_style.c_str());
+    double primitive_fps = 0;
+    for (const char* style : {"primitive", "mesh"}) {
+      depot::sim::Scenario styled = scenario;
+      styled.actors_style = style;
+      const double f = end_to_end_fps(styled, writers, nullptr);
+      if (primitive_fps == 0) primitive_fps = f;
+      std::printf("  %-9s end to end %6.1f fps  %5.2fx primitive\n", style, f, f / primitive_fps);
+      if (memory_frames > 0) {
+        const auto [early, late] = sequence_memory(styled, memory_frames);
+        std::printf(
+            "  %-9s resident memory %6.0f MB at frame %d, %6.0f MB at frame %d (%+.1f %%)\n", style,
+            early, memory_frames / 10, late, memory_frames, 100.0 * (late - early) / early);
+      }
+    }
   } catch (const depot::Error& e) {
     std::fprintf(stderr, "depot_sim_bench: error: %s\n", e.what());
     return 1;
