@@ -217,6 +217,7 @@ void DatasetWriter::write_text_files() {
                          {"frames", frames_},
                          {"dynamic_load", scenario_.dynamic_load},
                          {"actors_style", scenario_.actors_style},
+                         {"props_style", scenario_.props_style},
                          {"sensor", s.ideal ? "ideal" : "kinect"},
                          {"motion", scenario_.motion.type}};
   info["world_seed"] = scenario_.world_seed();

@@ -55,6 +55,7 @@ TruthSummary export_truth(Scenario scenario, const RenderRequest& request) {
                          {"frames", sequence.frame_count()},
                          {"dynamic_load", scenario.dynamic_load},
                          {"actors_style", scenario.actors_style},
+                         {"props_style", scenario.props_style},
                          {"motion", scenario.motion.type}};
   info["world_seed"] = scenario.world_seed();
   write_text_file_atomic((root / "info.json").string(), info.dump(1) + "\n");

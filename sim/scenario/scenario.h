@@ -103,6 +103,10 @@ struct Scenario {
   // animals stay primitive). Primitive by default: the shipped scenarios'
   // regression bounds were measured with primitives.
   std::string actors_style = "primitive";
+  // How furniture props are drawn: "primitive" or "mesh" (catalogue models:
+  // the office chair for pushable chairs, desk/table for desks; physics keeps
+  // the primitives). The key `style` sets both actors_style and props_style.
+  std::string props_style = "primitive";
   CameraIntrinsics camera;
   CameraMotionSpec motion;
   TimestampSpec timestamps;

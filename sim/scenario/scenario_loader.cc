@@ -260,8 +260,8 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
   for (const auto& o : overrides) apply_yaml_override(root, o, path + " (--set " + o.key + ")");
   Fields top(root, path, "scenario");
   top.allow_only({"name", "description", "scene", "classes", "seed", "seed_world", "frames",
-                  "shadows", "dynamic_load", "actors_style", "asset_catalog", "camera", "motion",
-                  "timestamps", "sensor", "actors"});
+                  "shadows", "dynamic_load", "style", "actors_style", "props_style",
+                  "asset_catalog", "camera", "motion", "timestamps", "sensor", "actors"});
 
   Scenario s;
   s.source_path = path;
@@ -279,10 +279,18 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
   s.frames = static_cast<int>(top.number("frames", 300, 1, 1e6));
   s.shadows = top.get<bool>("shadows", false);
   s.dynamic_load = top.number("dynamic_load", 1.0, 0.0, 4.0);
-  s.actors_style = top.str("actors_style", "primitive");
-  if (s.actors_style != "primitive" && s.actors_style != "mesh")
-    fail(top.where(top.node("actors_style")),
-         "unknown actors_style '" + s.actors_style + "' (expected primitive or mesh)");
+  // `style` draws everything one way; actors_style and props_style, where
+  // written, override it for their part.
+  auto style = [&](const char* key, const std::string& fallback) {
+    const std::string v = top.str(key, fallback);
+    if (v != "primitive" && v != "mesh")
+      fail(top.where(top.node(key)),
+           "unknown " + std::string(key) + " '" + v + "' (expected primitive or mesh)");
+    return v;
+  };
+  const std::string all = style("style", "primitive");
+  s.actors_style = style("actors_style", all);
+  s.props_style = style("props_style", all);
 
   if (top.has("camera"))
     read_camera(Fields(top.node("camera"), path, "camera"), s.camera);

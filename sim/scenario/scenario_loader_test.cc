@@ -52,5 +52,35 @@ TEST(ScenarioActorsStyle, DefaultsToPrimitiveAndTakesMesh) {
       << error;
 }
 
+TEST(ScenarioPropsStyle, DefaultsToPrimitiveAndTakesMesh) {
+  EXPECT_EQ(load_scenario(kWalking).props_style, "primitive");
+  const Scenario mesh = load_scenario(kWalking, {{"props_style", "mesh"}});
+  EXPECT_EQ(mesh.props_style, "mesh");
+  EXPECT_EQ(mesh.actors_style, "primitive") << "props_style leaves the actors alone";
+  EXPECT_EQ(load_scenario(kWalking, {{"actors_style", "mesh"}}).props_style, "primitive");
+  const std::string error = error_of([] { load_scenario(kWalking, {{"props_style", "wood"}}); });
+  EXPECT_NE(error.find("depot_walking_xyz.yaml"), std::string::npos) << error;
+  EXPECT_NE(error.find("unknown props_style 'wood' (expected primitive or mesh)"),
+            std::string::npos)
+      << error;
+}
+
+TEST(ScenarioStyle, SetsActorsAndPropsWhichMayOverrideIt) {
+  const Scenario all = load_scenario(kWalking, {{"style", "mesh"}});
+  EXPECT_EQ(all.actors_style, "mesh");
+  EXPECT_EQ(all.props_style, "mesh");
+  const Scenario people_only =
+      load_scenario(kWalking, {{"style", "mesh"}, {"props_style", "primitive"}});
+  EXPECT_EQ(people_only.actors_style, "mesh");
+  EXPECT_EQ(people_only.props_style, "primitive");
+  const Scenario props_only =
+      load_scenario(kWalking, {{"style", "primitive"}, {"props_style", "mesh"}});
+  EXPECT_EQ(props_only.actors_style, "primitive");
+  EXPECT_EQ(props_only.props_style, "mesh");
+  const std::string error = error_of([] { load_scenario(kWalking, {{"style", "clay"}}); });
+  EXPECT_NE(error.find("unknown style 'clay' (expected primitive or mesh)"), std::string::npos)
+      << error;
+}
+
 }  // namespace
 }  // namespace depot::sim

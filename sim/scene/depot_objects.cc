@@ -140,11 +140,12 @@ std::vector<InstanceGeometry> workbench(const SceneObject& o, Rng& rng) {
 std::vector<InstanceGeometry> desk(const SceneObject& o, Rng& rng) {
   const double L = o.length;
   InstanceGeometry d{o.name, "desk", object_pose(o), {}};
-  d.geoms.push_back(box(V3(0.4, L / 2, 0.02), V3(0, 0, 0.74), "desk"));
+  d.geoms.push_back(box(V3(kDeskDepth / 2, L / 2, 0.02), V3(0, 0, kDeskTopHeight - 0.02), "desk"));
   for (double sx : {-1.0, 1.0})
     for (double sy : {-1.0, 1.0})
       d.geoms.push_back(
           box(V3(0.025, 0.025, 0.36), V3(sx * 0.35, sy * (L / 2 - 0.05), 0.36), "dark_metal"));
+  for (auto& g : d.geoms) g.replaced_by_mesh = true;  // top and legs; the papers stay
   d.geoms.push_back(
       box(V3(0.12, 0.22, 0.01), V3(-0.15, rng.uniform(-0.2, 0.2), 0.77), "poster"));  // papers
   // The monitor stands at the far (+x) edge, its screen facing -x.
@@ -206,6 +207,7 @@ InstanceGeometry build_pushable(const std::string& type, const std::string& name
         add(cylinder(0.018, (kChairSeatHeight - 0.06) / 2,
                      V3(sx * 0.19, sy * 0.19, (kChairSeatHeight - 0.06) / 2), "dark_metal"),
             0.08, 300);
+    for (auto& d : g.geoms) d.replaced_by_mesh = true;  // the office chair mesh draws it all
   } else if (type == "cart") {
     add(box(V3(0.5, 0.3, 0.025), V3(0, 0, 0.22), "cart_metal"), 0.05, 250);
     for (double sx : {-1.0, 1.0})

@@ -20,4 +20,10 @@ InstanceGeometry build_pushable(const std::string& type, const std::string& name
 // Height of a chair's seat above the floor.
 constexpr double kChairSeatHeight = 0.46;
 
+// A desk's top: its height above the floor and its depth (x; its length,
+// along y, is the layout object's). The monitor stands on it at the +x edge;
+// one sits at -x.
+constexpr double kDeskTopHeight = 0.76;
+constexpr double kDeskDepth = 0.8;
+
 }  // namespace depot::sim

@@ -25,6 +25,10 @@ struct GeomDesc {
   double friction = 0.8;
   double density = 1000.0;
   bool visible = true;
+  // Part of a prop's frame that a catalogue mesh draws when props are meshes
+  // (props_style: mesh, sim/scene/mesh_props.h): the geom then stays for
+  // physics but is hidden.
+  bool replaced_by_mesh = false;
 };
 
 // One labelled instance's geometry, in the frame of its body.

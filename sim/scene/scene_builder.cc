@@ -18,6 +18,7 @@
 #include "sim/assets/asset_catalog.h"
 #include "sim/scene/depot_objects.h"
 #include "sim/scene/geometry.h"
+#include "sim/scene/mesh_props.h"
 #include "sim/scene/skinned_actor_xml.h"
 #include "sim/scene/textures.h"
 
@@ -93,6 +94,16 @@ void write_geom(std::ostringstream& x, const GeomDesc& g) {
   x << "/>\n";
 }
 
+// A body's primitive geoms; with mesh props, those a catalogue mesh replaces
+// stay for physics but are hidden (group 3, alpha 0: neither the colour nor
+// the segmentation pass draws them).
+void write_geoms(std::ostringstream& x, const std::vector<GeomDesc>& geoms, bool mesh_props) {
+  for (GeomDesc g : geoms) {
+    if (mesh_props && g.replaced_by_mesh) g.visible = false;
+    write_geom(x, g);
+  }
+}
+
 // Static bodies and the world's planes.
 void write_hall(std::ostringstream& x, const SceneLayout& l) {
   const double hx = l.length / 2, hy = l.width / 2, h = l.height;
@@ -128,13 +139,16 @@ bool inside_hall(const SceneLayout& l, const Eigen::Vector2d& p, double margin =
 
 // A pusher must start with its push plate clear of its chair or cart, at the
 // largest size its appearance can give: a plate inside the target at t = 0
-// flings it away while physics settles, before the first frame.
-void check_pusher_start(const ActorSpec& a, const Instance& target, const std::string& where) {
+// flings it away while physics settles, before the first frame. `solid` is
+// the target's collision geometry's bounds (a mesh chair's extent is larger:
+// its mesh has no contacts).
+void check_pusher_start(const ActorSpec& a, const Instance& target,
+                        const Eigen::AlignedBox3d& solid, const std::string& where) {
   const Path2D path = actor_path(a);
   const double s = a.size * HumanActor::kLargestScale;
   const Eigen::Vector3d centre = HumanActor::push_plate_centre(s);
   const Eigen::Vector3d half = HumanActor::push_plate_half(s);
-  Eigen::AlignedBox3d body = target.extent;
+  Eigen::AlignedBox3d body = solid;
   constexpr double kGap = 0.02;  // m
   body.min() -= Eigen::Vector3d::Constant(kGap);
   body.max() += Eigen::Vector3d::Constant(kGap);
@@ -287,23 +301,36 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
                             Eigen::Vector3d(layout.length / 2, layout.width / 2, layout.height));
   }
 
+  // Furniture props as catalogue meshes (props_style: mesh): desks here,
+  // chairs among the pushables; each model loaded and encoded once.
+  const bool mesh_props = scenario.props_style == "mesh";
+  MeshProps props(classes, scenario.asset_catalog_path);
+
   // Static furniture: one fixed body per instance.
   for (const SceneObject& object : layout.objects) {
     for (const InstanceGeometry& g : build_scene_object(object, scenario.world_seed())) {
-      Instance& inst = add_instance(g.name, g.class_name, InstanceKind::kStatic,
-                                    layout.path + ": object '" + object.name + "'");
+      const std::string context = layout.path + ": object '" + object.name + "'";
+      Instance& inst = add_instance(g.name, g.class_name, InstanceKind::kStatic, context);
       const std::string body = "static/" + g.name;
       inst.bodies.push_back(body);
       inst.pose = g.pose;
       inst.extent = local_bounds(g.geoms);
+      PropGeoms mesh;
+      if (mesh_props && object.type == "desk" && g.class_name == "desk") {
+        mesh = props.desk(object, context);
+        inst.extent.extend(mesh.bounds);
+        inst.asset = mesh.asset;
+      }
       x << "<body name=\"" << body << "\" pos=\"" << vec(g.pose.translation()) << "\" quat=\""
         << quat(g.pose.linear()) << "\">\n";
-      for (const auto& geom : g.geoms) write_geom(x, geom);
-      x << "</body>\n";
+      write_geoms(x, g.geoms, mesh_props);
+      x << mesh.xml << "</body>\n";
     }
   }
 
   // Pushables: free bodies.
+  std::string props_assets;  // <asset> section of the mesh props, after the bodies
+  std::map<std::string, Eigen::AlignedBox3d> pushable_solids;  // collision geoms' bounds
   const std::string where = scenario.source_path;
   for (const ActorSpec& a : scenario.actors) {
     if (!is_pushable_actor(a.type)) continue;
@@ -317,10 +344,22 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
     inst.bodies.push_back(body);
     inst.pose = ground_pose(a.position, 0.0, deg(a.yaw_deg));
     inst.extent = local_bounds(g.geoms);
+    pushable_solids[a.name] = inst.extent;
+    PropGeoms mesh;
+    if (mesh_props && a.type == "chair") {
+      mesh = props.chair();
+      inst.extent.extend(mesh.bounds);
+      inst.asset = mesh.asset;
+    }
     x << "<body name=\"" << body << "\" pos=\"" << vec(inst.pose.translation()) << "\" quat=\""
       << quat(inst.pose.linear()) << "\">\n<freejoint/>\n";
-    for (const auto& geom : g.geoms) write_geom(x, geom);
-    x << "</body>\n";
+    write_geoms(x, g.geoms, mesh_props);
+    x << mesh.xml << "</body>\n";
+  }
+  if (!props.empty()) {
+    // The props' materials and meshes, shared by every instance.
+    props_assets = "<asset>\n" + props.asset_xml() + "</asset>\n";
+    props.append_files(model.assets);
   }
 
   // Animated actors: one mocap body per part.
@@ -348,7 +387,7 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
     if (a.action == "push") {
       for (const Instance& target : model.instances)
         if (target.kind == InstanceKind::kPushable && target.name == a.target)
-          check_pusher_start(a, target, where);
+          check_pusher_start(a, target, pushable_solids.at(target.name), where);
     }
     std::unique_ptr<Actor> actor = make_actor(a, seat_ptr);
     const MeshVariants::Variant* variant =
@@ -417,7 +456,7 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
   const double fovy = 2.0 * std::atan(cam.height / 2.0 / cam.f) * 180.0 / M_PI;
   x << "<body name=\"" << model.camera_body << "\" mocap=\"true\" pos=\"0 0 1\">\n<camera name=\""
     << model.camera_name << "\" fovy=\"" << num(fovy) << "\"/>\n</body>\n";
-  x << "</worldbody>\n";
+  x << "</worldbody>\n" << props_assets;
   if (!skins.empty()) {
     x << "<asset>\n";
     for (const auto& [index, v] : variants.used()) {

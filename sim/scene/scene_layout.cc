@@ -73,6 +73,9 @@ SceneLayout load_scene_layout(const std::string& path) {
     o.count = {c[0], c[1], c[2]};
     if (o.levels < 1 || o.levels > 8) fail(at(path, n), "rack levels must be 1..8");
     if (!(o.length > 0.2 && o.length < 20)) fail(at(path, n), "length out of range");
+    o.model = read<std::string>(path, n, "model", "");
+    if (!o.model.empty() && o.type != "desk")
+      fail(at(path, n["model"]), "object '" + o.name + "': only desks take a catalogue 'model'");
     layout.objects.push_back(o);
   }
   return layout;

@@ -17,6 +17,9 @@ struct SceneObject {
   double length = 2.4;             // racks, workbenches, desks (m)
   int levels = 4;                  // racks
   Eigen::Vector3i count{1, 1, 1};  // crate stacks / sack piles: nx, ny, nz
+  // Desks: the asset catalogue entry (class desk) drawn when props are
+  // meshes (props_style: mesh); "" = the catalogue's first desk.
+  std::string model;
 };
 
 struct SceneLayout {
