@@ -145,8 +145,9 @@ TEST(SimMeshActors, SameSeedGivesByteIdenticalDatasets) {
   const std::string b = render_small(mesh_render(8, 160, false, 42));
   EXPECT_EQ(compare_trees(a, b), "");
   // And the style really changes the pictures.
-  const std::string p = render_small({"depot_walking_xyz", 8, 160, false, 42});
-  EXPECT_NE(compare_trees(a, p), "");
+  SmallRender primitive{"depot_walking_xyz", 8, 160, false, 42};
+  primitive.set = {{"actors_style", "primitive"}};
+  EXPECT_NE(compare_trees(a, render_small(primitive)), "");
 }
 
 }  // namespace

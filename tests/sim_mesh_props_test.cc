@@ -23,7 +23,7 @@ const std::pair<std::string, std::string> kMeshProps = {"props_style", "mesh"};
 SmallRender props_render(int frames, int width, bool ideal, bool mesh,
                          std::optional<uint64_t> seed = {}) {
   SmallRender r{"depot_walking_xyz", frames, width, ideal, seed};
-  if (mesh) r.set = {kMeshProps};
+  r.set = {mesh ? kMeshProps : std::pair<std::string, std::string>{"props_style", "primitive"}};
   return r;
 }
 
@@ -121,15 +121,15 @@ TEST(SimMeshProps, PhysicsAndTruthDoNotChange) {
   EXPECT_NE(file_text(mesh + "/info.json").find("\"props_style\": \"mesh\""), std::string::npos);
 }
 
-TEST(SimMeshProps, SameSeedGivesByteIdenticalDatasetsAndPrimitiveStaysTheDefault) {
+TEST(SimMeshProps, SameSeedGivesByteIdenticalDatasetsAndMeshIsTheDefault) {
   const std::string a = render_small(props_render(8, 160, false, true, 42));
   const std::string b = render_small(props_render(8, 160, false, true, 42));
   EXPECT_EQ(compare_trees(a, b), "");
-  // Primitive props are the default, and the style really changes the pictures.
+  // Mesh props are the default, and the style really changes the pictures.
+  SmallRender by_default = props_render(8, 160, false, true, 42);
+  by_default.set.clear();
+  EXPECT_EQ(compare_trees(a, render_small(by_default)), "");
   const std::string p = render_small(props_render(8, 160, false, false, 42));
-  SmallRender explicit_primitive = props_render(8, 160, false, false, 42);
-  explicit_primitive.set = {{"props_style", "primitive"}};
-  EXPECT_EQ(compare_trees(p, render_small(explicit_primitive)), "");
   EXPECT_NE(compare_trees(a, p), "");
 }
 

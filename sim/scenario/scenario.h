@@ -98,15 +98,14 @@ struct Scenario {
   int frames = 300;
   bool shadows = false;
   double dynamic_load = 1.0;
-  // How living actors are drawn: "primitive" (rigid boxes and capsules) or
-  // "mesh" (skinned catalogue models, assets/catalog.yaml; people only so far,
-  // animals stay primitive). Primitive by default: the shipped scenarios'
-  // regression bounds were measured with primitives.
-  std::string actors_style = "primitive";
-  // How furniture props are drawn: "primitive" or "mesh" (catalogue models:
-  // the office chair for pushable chairs, desk/table for desks; physics keeps
-  // the primitives). The key `style` sets both actors_style and props_style.
-  std::string props_style = "primitive";
+  // How living actors are drawn: "mesh" (skinned catalogue models,
+  // asset_catalog_path; a class without a model stays primitive) or
+  // "primitive" (rigid boxes and capsules). Scenario files default to mesh.
+  std::string actors_style = "mesh";
+  // How furniture props are drawn: "mesh" (catalogue models: the office
+  // chair for pushable chairs, desk/table for desks; physics keeps the
+  // primitives) or "primitive". The key `style` sets both.
+  std::string props_style = "mesh";
   CameraIntrinsics camera;
   CameraMotionSpec motion;
   TimestampSpec timestamps;

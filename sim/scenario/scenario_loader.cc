@@ -279,8 +279,9 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
   s.frames = static_cast<int>(top.number("frames", 300, 1, 1e6));
   s.shadows = top.get<bool>("shadows", false);
   s.dynamic_load = top.number("dynamic_load", 1.0, 0.0, 4.0);
-  // `style` draws everything one way; actors_style and props_style, where
-  // written, override it for their part.
+  // `style` draws everything one way (default mesh: the catalogue's models
+  // where one plays the class); actors_style and props_style, where written,
+  // override it for their part.
   auto style = [&](const char* key, const std::string& fallback) {
     const std::string v = top.str(key, fallback);
     if (v != "primitive" && v != "mesh")
@@ -288,7 +289,7 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
            "unknown " + std::string(key) + " '" + v + "' (expected primitive or mesh)");
     return v;
   };
-  const std::string all = style("style", "primitive");
+  const std::string all = style("style", "mesh");
   s.actors_style = style("actors_style", all);
   s.props_style = style("props_style", all);
 

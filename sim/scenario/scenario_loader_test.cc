@@ -42,9 +42,9 @@ TEST(ScenarioOverrides, AreValidatedLikeTheFile) {
   EXPECT_NE(error_of([] { load_scenario(kWalking, {{"sensor.rgb_noise", "loud"}}); }), "");
 }
 
-TEST(ScenarioActorsStyle, DefaultsToPrimitiveAndTakesMesh) {
-  EXPECT_EQ(load_scenario(kWalking).actors_style, "primitive");
-  EXPECT_EQ(load_scenario(kWalking, {{"actors_style", "mesh"}}).actors_style, "mesh");
+TEST(ScenarioActorsStyle, DefaultsToMeshAndTakesPrimitive) {
+  EXPECT_EQ(load_scenario(kWalking).actors_style, "mesh");
+  EXPECT_EQ(load_scenario(kWalking, {{"actors_style", "primitive"}}).actors_style, "primitive");
   const std::string error = error_of([] { load_scenario(kWalking, {{"actors_style", "clay"}}); });
   EXPECT_NE(error.find("depot_walking_xyz.yaml"), std::string::npos) << error;
   EXPECT_NE(error.find("unknown actors_style 'clay' (expected primitive or mesh)"),
@@ -52,12 +52,12 @@ TEST(ScenarioActorsStyle, DefaultsToPrimitiveAndTakesMesh) {
       << error;
 }
 
-TEST(ScenarioPropsStyle, DefaultsToPrimitiveAndTakesMesh) {
-  EXPECT_EQ(load_scenario(kWalking).props_style, "primitive");
-  const Scenario mesh = load_scenario(kWalking, {{"props_style", "mesh"}});
-  EXPECT_EQ(mesh.props_style, "mesh");
-  EXPECT_EQ(mesh.actors_style, "primitive") << "props_style leaves the actors alone";
-  EXPECT_EQ(load_scenario(kWalking, {{"actors_style", "mesh"}}).props_style, "primitive");
+TEST(ScenarioPropsStyle, DefaultsToMeshAndTakesPrimitive) {
+  EXPECT_EQ(load_scenario(kWalking).props_style, "mesh");
+  const Scenario primitive = load_scenario(kWalking, {{"props_style", "primitive"}});
+  EXPECT_EQ(primitive.props_style, "primitive");
+  EXPECT_EQ(primitive.actors_style, "mesh") << "props_style leaves the actors alone";
+  EXPECT_EQ(load_scenario(kWalking, {{"actors_style", "primitive"}}).props_style, "mesh");
   const std::string error = error_of([] { load_scenario(kWalking, {{"props_style", "wood"}}); });
   EXPECT_NE(error.find("depot_walking_xyz.yaml"), std::string::npos) << error;
   EXPECT_NE(error.find("unknown props_style 'wood' (expected primitive or mesh)"),

@@ -105,6 +105,10 @@ PropGeoms MeshProps::place(Model& m, const Eigen::Vector3d& scale, const Eigen::
   return out;
 }
 
+bool MeshProps::has_model(const std::string& class_name) {
+  return !catalog_assets_of_class(catalog(), class_name).empty();
+}
+
 double MeshProps::chair_scale() {
   const auto chairs = catalog_assets_of_class(catalog(), "chair");
   if (chairs.empty()) fail(catalog().path, "no asset plays class 'chair'");

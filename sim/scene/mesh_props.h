@@ -45,6 +45,10 @@ class MeshProps {
   // The catalogue is read when the first prop is asked for.
   MeshProps(const ClassTable& classes, std::string catalog_path);
 
+  // Whether the catalogue has a model of `class_name` (a class without one
+  // stays primitive, like an actor's).
+  bool has_model(const std::string& class_name);
+
   // A chair's visual meshes: the first catalogue asset of class chair,
   // facing +x with its column on the body's origin, scaled uniformly so its
   // seat's top is at kChairSeatHeight (sim/scene/depot_objects.h).

@@ -109,7 +109,7 @@ TEST(MeshProps, DeskModelMustBeACatalogueDesk) {
 }
 
 TEST(MeshProps, SceneLoadsEachModelOnceAndKeepsThePhysics) {
-  const SceneModel primitive = scene_of(load_scenario(kWalking));
+  const SceneModel primitive = scene_of(load_scenario(kWalking, {{"props_style", "primitive"}}));
   SceneModel mesh = scene_of(load_scenario(kWalking, {{"props_style", "mesh"}}));
   EXPECT_EQ(count(primitive.xml, "type=\"mesh\""), 0u);
   EXPECT_EQ(count(primitive.xml, "prop_"), 0u);

@@ -97,9 +97,9 @@ void write_geom(std::ostringstream& x, const GeomDesc& g) {
 // A body's primitive geoms; with mesh props, those a catalogue mesh replaces
 // stay for physics but are hidden (group 3, alpha 0: neither the colour nor
 // the segmentation pass draws them).
-void write_geoms(std::ostringstream& x, const std::vector<GeomDesc>& geoms, bool mesh_props) {
+void write_geoms(std::ostringstream& x, const std::vector<GeomDesc>& geoms, bool drawn_as_mesh) {
   for (GeomDesc g : geoms) {
-    if (mesh_props && g.replaced_by_mesh) g.visible = false;
+    if (drawn_as_mesh && g.replaced_by_mesh) g.visible = false;
     write_geom(x, g);
   }
 }
@@ -316,14 +316,16 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
       inst.pose = g.pose;
       inst.extent = local_bounds(g.geoms);
       PropGeoms mesh;
-      if (mesh_props && object.type == "desk" && g.class_name == "desk") {
+      const bool desk_mesh =
+          mesh_props && object.type == "desk" && g.class_name == "desk" && props.has_model("desk");
+      if (desk_mesh) {
         mesh = props.desk(object, context);
         inst.extent.extend(mesh.bounds);
         inst.asset = mesh.asset;
       }
       x << "<body name=\"" << body << "\" pos=\"" << vec(g.pose.translation()) << "\" quat=\""
         << quat(g.pose.linear()) << "\">\n";
-      write_geoms(x, g.geoms, mesh_props);
+      write_geoms(x, g.geoms, desk_mesh);
       x << mesh.xml << "</body>\n";
     }
   }
@@ -346,14 +348,15 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
     inst.extent = local_bounds(g.geoms);
     pushable_solids[a.name] = inst.extent;
     PropGeoms mesh;
-    if (mesh_props && a.type == "chair") {
+    const bool chair_mesh = mesh_props && a.type == "chair" && props.has_model("chair");
+    if (chair_mesh) {
       mesh = props.chair();
       inst.extent.extend(mesh.bounds);
       inst.asset = mesh.asset;
     }
     x << "<body name=\"" << body << "\" pos=\"" << vec(inst.pose.translation()) << "\" quat=\""
       << quat(inst.pose.linear()) << "\">\n<freejoint/>\n";
-    write_geoms(x, g.geoms, mesh_props);
+    write_geoms(x, g.geoms, chair_mesh);
     x << mesh.xml << "</body>\n";
   }
   if (!props.empty()) {
