@@ -64,7 +64,10 @@ std::string encode_texture_png(const cv::Mat& image) {
   cv::Mat bgr = image;
   if (image.channels() == 4) cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR);
   if (image.channels() == 1) cv::cvtColor(image, bgr, cv::COLOR_GRAY2BGR);
-  const std::vector<unsigned char> buf = encode_png(bgr, PngKind::kColor, 1);
+  // Level 0 (stored): the bytes only travel through memory to MuJoCo, which
+  // decodes them at once; deflating ~4 MB of texels per person costs more
+  // than it saves.
+  const std::vector<unsigned char> buf = encode_png(bgr, PngKind::kColor, 0);
   return std::string(buf.begin(), buf.end());
 }
 

@@ -129,7 +129,8 @@ void write_hall(std::ostringstream& x, const SceneLayout& l) {
 
 std::string png_bytes(const cv::Mat& bgr) {
   std::vector<uchar> buf;
-  cv::imencode(".png", bgr, buf, {cv::IMWRITE_PNG_COMPRESSION, 1});
+  // Stored (level 0): the bytes go straight to MuJoCo's decoder in memory.
+  cv::imencode(".png", bgr, buf, {cv::IMWRITE_PNG_COMPRESSION, 0});
   return std::string(buf.begin(), buf.end());
 }
 
