@@ -144,9 +144,11 @@ HumanPosture HumanActor::posture(double t) const {
   p.knee[0] = deg(4.0) + (moving ? deg(50.0) * std::pow(std::max(0.0, std::cos(phi)), 2) : 0.0);
   p.knee[1] = deg(4.0) + (moving ? deg(50.0) * std::pow(std::max(0.0, -std::cos(phi)), 2) : 0.0);
   if (mode_ == Mode::kPush) {
+    // Hands on the chair's or cart's back (about 1 m up, 0.4 m ahead): upper
+    // arms 40 deg forward, forearms 20 deg further.
     for (int i = 0; i < 2; ++i) {
-      p.shoulder[i] = deg(65.0) + 0.1 * amp * std::sin(phi + i * M_PI);
-      p.elbow[i] = deg(25.0);
+      p.shoulder[i] = deg(40.0) + 0.1 * amp * std::sin(phi + i * M_PI);
+      p.elbow[i] = deg(20.0);
     }
     p.torso_pitch = deg(12.0);
   } else {
