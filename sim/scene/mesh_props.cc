@@ -6,19 +6,10 @@
 
 #include "common/error.h"
 #include "sim/scene/depot_objects.h"
+#include "sim/scene/mjcf_text.h"
 
 namespace depot::sim {
 namespace {
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.6g", std::abs(v) < 1e-12 ? 0.0 : v);
-  return buf;
-}
-
-std::string vec(const Eigen::Vector3d& v) {
-  return num(v.x()) + " " + num(v.y()) + " " + num(v.z());
-}
 
 // The file a mesh of an encoded set reads (encode_for_mujoco names it after
 // the mesh).

@@ -19,6 +19,7 @@
 #include "sim/scene/depot_objects.h"
 #include "sim/scene/geometry.h"
 #include "sim/scene/mesh_props.h"
+#include "sim/scene/mjcf_text.h"
 #include "sim/scene/skinned_actor_xml.h"
 #include "sim/scene/textures.h"
 
@@ -39,20 +40,6 @@ const char* instance_kind_name(InstanceKind k) {
 }
 
 namespace {
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.6g", std::abs(v) < 1e-12 ? 0.0 : v);
-  return buf;
-}
-std::string vec(const Eigen::Vector3d& v) {
-  return num(v.x()) + " " + num(v.y()) + " " + num(v.z());
-}
-std::string quat(const Eigen::Matrix3d& r) {
-  Eigen::Quaterniond q(r);
-  q.normalize();
-  return num(q.w()) + " " + num(q.x()) + " " + num(q.y()) + " " + num(q.z());
-}
 
 const char* shape_name(Shape s) {
   switch (s) {
