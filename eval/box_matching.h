@@ -17,6 +17,7 @@ struct TruthObject {
   std::string class_name;
   cv::Rect2f box;  // pixels
   double visible_pixels = 0.0;
+  std::string model;  // the catalogue model a simulated object is drawn from, or ""
 };
 
 // A detection as scored: the detector's own label (before any class

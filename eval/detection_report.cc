@@ -88,6 +88,18 @@ Table class_table(const DetectionSide& side) {
   return t;
 }
 
+// Recall per catalogue model (mesh actors and props), where the truth names
+// them: which asset a class's recall comes from.
+Table model_table(const DetectionScore& s) {
+  Table t{"Recall per model (the catalogue asset each object is drawn from)",
+          {"class", "model", "recall (clear)", "recall (all)"},
+          {}};
+  for (const auto& [cls, models] : s.by_model())
+    for (const auto& [model, k] : models)
+      t.rows.push_back({cls, model, cell(k.clear), cell(k.all)});
+  return t;
+}
+
 Table bucket_table(const DetectionScore& s, bool by_height) {
   const std::vector<std::string> names =
       by_height ? s.rules().height_bucket_names() : s.rules().fill_bucket_names();
@@ -201,8 +213,10 @@ std::string html(const Table& t) {
 }
 
 std::vector<Table> side_tables(const DetectionSide& side) {
-  return {class_table(side), bucket_table(*side.score, true), bucket_table(*side.score, false),
-          confusion_table(*side.score, true)};
+  std::vector<Table> tables{class_table(side), bucket_table(*side.score, true),
+                            bucket_table(*side.score, false), confusion_table(*side.score, true)};
+  if (!side.score->by_model().empty()) tables.insert(tables.begin() + 1, model_table(*side.score));
+  return tables;
 }
 
 // Clearly visible recall and precision of every side, class by class.

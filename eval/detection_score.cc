@@ -111,6 +111,11 @@ void DetectionScore::add_frame(const std::vector<TruthObject>& truth,
     ClassTally& tally = mutable_tally(box.class_name);
     tally.all.add(found);
     if (clear) tally.clear.add(found);
+    if (!box.model.empty()) {
+      ModelTally& mt = by_model_[box.class_name][box.model];
+      mt.all.add(found);
+      if (clear) mt.clear.add(found);
+    }
     tally.by_height[rules_.height_bucket(box)].add(found);
     tally.by_fill[rules_.fill_bucket(box)].add(found);
     if (found) tally.iou_sum += box_iou(detections[by_class[t]].box, box.box);

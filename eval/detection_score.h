@@ -88,6 +88,15 @@ class DetectionScore {
   const ClassTally& tally(const std::string& class_name) const;
   // truth class -> detected class or kMissed -> boxes; all boxes, and the
   // clearly visible ones.
+  // Recall per catalogue model of the boxes that name one (TruthObject::
+  // model): class -> model -> {all, clear} tallies.
+  struct ModelTally {
+    Tally all, clear;
+  };
+  const std::map<std::string, std::map<std::string, ModelTally>>& by_model() const {
+    return by_model_;
+  }
+
   const std::map<std::string, std::map<std::string, long>>& confusion(bool clear_only) const {
     return clear_only ? confusion_clear_ : confusion_;
   }
@@ -111,6 +120,7 @@ class DetectionScore {
   std::map<std::string, ClassTally> tallies_;
   std::vector<std::string> extra_classes_;  // detected classes beyond classes_
   std::map<std::string, std::map<std::string, long>> confusion_, confusion_clear_;
+  std::map<std::string, std::map<std::string, ModelTally>> by_model_;
   long frames_ = 0, false_positives_ = 0, other_detections_ = 0;
 };
 

@@ -15,8 +15,9 @@
 namespace depot::eval {
 namespace {
 
-TruthObject truth(const std::string& cls, float x, float y, float w, float h, double visible = -1) {
-  return {cls, cv::Rect2f(x, y, w, h), visible < 0 ? static_cast<double>(w * h) : visible};
+TruthObject truth(const std::string& cls, float x, float y, float w, float h, double visible = -1,
+                  const std::string& model = "") {
+  return {cls, cv::Rect2f(x, y, w, h), visible < 0 ? static_cast<double>(w * h) : visible, model};
 }
 
 ScoredDetection det(const std::string& label, float conf, float x, float y, float w, float h) {
@@ -203,6 +204,24 @@ TEST(ClassMapping, BadFilesNameFileAndLine) {
   const std::string broken = write_test_file("broken.yaml", "map: {person: person\n");
   EXPECT_NE(error_of([&] { ClassMapping::load(broken); }).find("YAML syntax error"),
             std::string::npos);
+}
+
+TEST(DetectionScore, RecallPerCatalogueModel) {
+  DetectionScore s({"person", "dog"}, ClassMapping{});
+  // Two people models, one found twice, one missed; the dog has no model.
+  s.add_frame(
+      {truth("person", 0, 0, 100, 200, -1, "worker_male"),
+       truth("person", 300, 0, 100, 200, -1, "female_casual"), truth("dog", 500, 300, 100, 100)},
+      {det("person", 0.9f, 0, 0, 100, 200)});
+  s.add_frame({truth("person", 0, 0, 100, 200, -1, "worker_male")},
+              {det("person", 0.9f, 2, 0, 100, 200)});
+  const auto& m = s.by_model();
+  ASSERT_EQ(m.count("person"), 1u);
+  EXPECT_EQ(m.count("dog"), 0u) << "boxes without a model are not listed";
+  EXPECT_EQ(m.at("person").at("worker_male").all.found, 2);
+  EXPECT_EQ(m.at("person").at("worker_male").clear.total, 2);
+  EXPECT_EQ(m.at("person").at("female_casual").all.found, 0);
+  EXPECT_EQ(m.at("person").at("female_casual").all.total, 1);
 }
 
 }  // namespace

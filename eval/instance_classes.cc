@@ -9,18 +9,25 @@
 
 namespace depot::eval {
 
-std::map<int, std::string> read_instance_classes(const std::string& dataset) {
+std::map<int, InstanceInfo> read_instances(const std::string& dataset) {
   const std::string path = (std::filesystem::path(dataset) / "objects.json").string();
   std::ifstream in(path);
   if (!in) fail(path, "cannot open file (the dataset's objects; not a simulated dataset?)");
-  std::map<int, std::string> classes;
+  std::map<int, InstanceInfo> instances;
   try {
     const nlohmann::json doc = nlohmann::json::parse(in);
     for (const nlohmann::json& o : doc.at("instances"))
-      classes[o.at("id").get<int>()] = o.at("class").get<std::string>();
+      instances[o.at("id").get<int>()] = {o.at("class").get<std::string>(),
+                                          o.value("asset", std::string())};
   } catch (const nlohmann::json::exception& e) {
     fail(path, std::string("not a dataset's objects file: ") + e.what());
   }
+  return instances;
+}
+
+std::map<int, std::string> read_instance_classes(const std::string& dataset) {
+  std::map<int, std::string> classes;
+  for (const auto& [id, info] : read_instances(dataset)) classes[id] = info.class_name;
   return classes;
 }
 

@@ -9,8 +9,17 @@
 
 namespace depot::eval {
 
-// Instance id -> class, from `dataset`/objects.json. Throws depot::Error
-// naming the file when it is missing or malformed.
+// What objects.json says of an instance.
+struct InstanceInfo {
+  std::string class_name;
+  std::string model;  // catalogue asset it is drawn from ("asset"), or ""
+};
+
+// Instance id -> its class and model, from `dataset`/objects.json. Throws
+// depot::Error naming the file when it is missing or malformed.
+std::map<int, InstanceInfo> read_instances(const std::string& dataset);
+
+// Instance id -> class (read_instances, classes only).
 std::map<int, std::string> read_instance_classes(const std::string& dataset);
 
 // The ids of the instances of `class_name`.

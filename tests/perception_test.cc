@@ -69,6 +69,14 @@ TEST(Perception, PerfectSimulatedDetectorScoresOne) {
   EXPECT_TRUE(fs::exists(report + "/report.html"));
   EXPECT_TRUE(fs::exists(report + "/recall_vs_height_1.svg"));
   EXPECT_NE(r.output.find("person"), std::string::npos);
+  // Recall per catalogue model: the mesh people are listed by the model
+  // they wear (objects.json), each found every time.
+  const size_t models = r.output.find("Recall per model");
+  ASSERT_NE(models, std::string::npos) << r.output;
+  const std::string table = r.output.substr(models, r.output.find("Recall by box") - models);
+  EXPECT_NE(table.find("person"), std::string::npos) << table;
+  EXPECT_NE(table.find("1.00"), std::string::npos) << table;
+  EXPECT_EQ(table.find("0.00"), std::string::npos) << table;
 }
 
 TEST(Perception, YoloFastestFindsBothPeopleOfTheRealTumFrame) {

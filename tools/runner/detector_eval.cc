@@ -33,11 +33,15 @@ std::vector<eval::ScoredDetection> detect(slam::Detector& detector, const cv::Ma
 
 }  // namespace
 
-std::vector<eval::TruthObject> truth_objects(const std::vector<slam::TruthBox>& boxes) {
+std::vector<eval::TruthObject> truth_objects(const std::vector<slam::TruthBox>& boxes,
+                                             const std::map<int, eval::InstanceInfo>& instances) {
   std::vector<eval::TruthObject> objects;
   objects.reserve(boxes.size());
-  for (const slam::TruthBox& b : boxes)
-    objects.push_back({b.class_name, b.rect(), static_cast<double>(b.visible_pixels)});
+  for (const slam::TruthBox& b : boxes) {
+    auto it = instances.find(b.id);
+    objects.push_back({b.class_name, b.rect(), static_cast<double>(b.visible_pixels),
+                       it == instances.end() ? std::string() : it->second.model});
+  }
   return objects;
 }
 
@@ -59,6 +63,7 @@ DetectorEval evaluate_on_dataset(slam::Detector& detector, const std::string& da
          "no ground-truth boxes (boxes.txt): not a simulated dataset (score real images "
          "with --images)");
   const slam::DatasetBoxes truth = slam::read_dataset_boxes(dataset);
+  const std::map<int, eval::InstanceInfo> instances = eval::read_instances(dataset);
   mapping.check_classes(truth.classes, dataset + "/classes.txt");
   DetectorEval eval{
       eval::DetectionScore(truth.classes, mapping), detector.name(), detector.class_names(), {}};
@@ -71,7 +76,7 @@ DetectorEval evaluate_on_dataset(slam::Detector& detector, const std::string& da
         reads_pixels ? read_image((std::filesystem::path(dataset) / truth.rgb_files[i]).string(),
                                   ImageRead::kColor)
                      : cv::Mat();
-    const std::vector<eval::TruthObject> objects = truth_objects(truth.frames[i]);
+    const std::vector<eval::TruthObject> objects = truth_objects(truth.frames[i], instances);
     const std::vector<eval::ScoredDetection> found =
         detect(detector, bgr, truth.timestamps[i], static_cast<long>(i), eval);
     eval.score.add_frame(objects, found);

@@ -10,6 +10,7 @@
 #include "eval/detection_report.h"
 #include "eval/detection_score.h"
 #include "eval/image_labels.h"
+#include "eval/instance_classes.h"
 #include "slam/detect/detection.h"
 #include "slam/detect/truth_boxes.h"
 
@@ -31,7 +32,9 @@ struct DetectorEval {
 eval::ClassMapping class_mapping_for(const std::string& type, const std::string& path);
 
 // The truth boxes as the scoring takes them.
-std::vector<eval::TruthObject> truth_objects(const std::vector<slam::TruthBox>& boxes);
+std::vector<eval::TruthObject> truth_objects(
+    const std::vector<slam::TruthBox>& boxes,
+    const std::map<int, eval::InstanceInfo>& instances = {});
 
 // Sees every scored frame of a dataset: its rgb.txt index, its truth boxes
 // (boxes.txt order) and the detections scored against them.
