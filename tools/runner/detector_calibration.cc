@@ -158,8 +158,10 @@ std::string render_command(const CalibrationDataset& d) {
   if (i.value("sensor", "kinect") == "ideal") cmd += " --ideal";
   if (i.contains("dynamic_load") && i["dynamic_load"].get<double>() != 1.0)
     cmd += " --load " + number_text(i["dynamic_load"].get<double>());
-  if (i.contains("actors_style") && i["actors_style"].get<std::string>() != "primitive")
-    cmd += " --set actors_style=" + i["actors_style"].get<std::string>();
+  // Styles other than the default (mesh).
+  for (const char* k : {"actors_style", "props_style"})
+    if (i.contains(k) && i[k].is_string() && i[k].get<std::string>() != "mesh")
+      cmd += std::string(" --set ") + k + "=" + i[k].get<std::string>();
   if (i.contains("world_seed") && i["world_seed"] != i["seed"])
     cmd += " --set seed_world=" + std::to_string(i["world_seed"].get<long>());
   return cmd;
@@ -278,7 +280,7 @@ std::string calibration_file_text(const DetectorCalibration& cal, const std::str
     out << YAML::Key << "path" << YAML::Value << d.path;
     const nlohmann::json& i = d.info;
     if (i.is_object()) {
-      for (const char* k : {"scenario", "actors_style", "sensor"})
+      for (const char* k : {"scenario", "actors_style", "props_style", "sensor"})
         if (i.contains(k) && i[k].is_string())
           out << YAML::Key << k << YAML::Value << i[k].get<std::string>();
       for (const char* k : {"seed", "world_seed"})
