@@ -28,8 +28,7 @@ ClipRig::ClipRig(std::shared_ptr<const AssetModel> model, const CatalogAsset& en
     : model_(std::move(model)) {
   const Skeleton& sk = model_->skeleton;
   const std::string where = "asset '" + entry.name + "' (" + model_->source + ")";
-  for (size_t b = 0; b < sk.bones.size(); ++b)
-    if (sk.bones[b].deforms) body_bones_.push_back(static_cast<int>(b));
+  body_bones_ = deforming_bones(sk);
   walk_ = clip_of(*model_, entry, "walk");
   idle_ = clip_of(*model_, entry, "idle");
   flap_ = clip_of(*model_, entry, "flap");
@@ -45,6 +44,7 @@ ClipRig::ClipRig(std::shared_ptr<const AssetModel> model, const CatalogAsset& en
       const std::vector<int> bones = find_bones(sk, names, where);
       legs_.push_back({bones[0], bones.size() > 1 ? bones[1] : -1});
     }
+    bone_globals(sk, rest_pose(sk), rest_);
   }
   if (walk_ < 0 && legs_.empty())
     fail(where, "a walking animal needs a 'walk' clip or procedural 'legs' in the catalogue");
@@ -54,8 +54,7 @@ ClipRig::ClipRig(std::shared_ptr<const AssetModel> model, const CatalogAsset& en
 
 void ClipRig::swing_legs(double cycles, SkeletonPose& pose) const {
   const Skeleton& sk = model_->skeleton;
-  std::vector<Eigen::Affine3d> rest;
-  bone_globals(sk, rest_pose(sk), rest);
+  const std::vector<Eigen::Affine3d>& rest = rest_;
   for (size_t i = 0; i < legs_.size(); ++i) {
     const double a = kSwing * std::sin(2.0 * M_PI * (cycles + kLegPhase[i % 4]));
     // Forward swing turns the leg about -y (x forward, z up), as in limb().
@@ -68,7 +67,7 @@ void ClipRig::swing_legs(double cycles, SkeletonPose& pose) const {
     // forward.
     const Eigen::Vector3d hip = rest_joint_position(sk, legs_[i].hip);
     const double lift =
-        0.06 * (hip.z()) * std::max(0.0, std::cos(2.0 * M_PI * (cycles + kLegPhase[i % 4])));
+        0.06 * hip.z() * std::max(0.0, std::cos(2.0 * M_PI * (cycles + kLegPhase[i % 4])));
     Eigen::Affine3d moved = Eigen::Translation3d(hip + Eigen::Vector3d(0, 0, lift)) * turn *
                             Eigen::Translation3d(-hip) * rest[foot];
     const Eigen::Affine3d parent =

@@ -56,7 +56,8 @@ class ClipRig {
   std::vector<int> body_bones_;
   int walk_ = -1, idle_ = -1, flap_ = -1;  // clip indices, -1 when absent
   double stride_ = 1.0;
-  std::vector<Leg> legs_;  // procedural trot when there is no walk clip
+  std::vector<Leg> legs_;              // procedural trot when there is no walk clip
+  std::vector<Eigen::Affine3d> rest_;  // rest-pose globals, for carrying the legs' IK feet
 };
 
 }  // namespace depot::sim

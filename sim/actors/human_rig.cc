@@ -45,8 +45,7 @@ HumanRig::HumanRig(std::shared_ptr<const AssetModel> model) : model_(std::move(m
                  {"pelvis", "spine_01", "neck_01", "head", "thigh_l", "calf_l", "foot_l", "thigh_r",
                   "calf_r", "foot_r", "upperarm_l", "lowerarm_l", "upperarm_r", "lowerarm_r"},
                  model_->source);
-  for (size_t b = 0; b < sk.bones.size(); ++b)
-    if (sk.bones[b].deforms) body_bones_.push_back(static_cast<int>(b));
+  body_bones_ = deforming_bones(sk);
   const Eigen::Vector3d hip = rest_joint_position(sk, drive_[kThighL]);
   const Eigen::Vector3d knee = rest_joint_position(sk, drive_[kCalfL]);
   const Eigen::Vector3d ankle = rest_joint_position(sk, drive_[kFootL]);

@@ -7,6 +7,7 @@
 // checked when an entry's model is loaded. Every error is one line naming the
 // catalogue file and the entry.
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,24 @@ struct AssetCatalog {
 // classes. Paths in it are relative to its folder or start with
 // ${DEPOT_SHARED_DATA} (common/config_path.h).
 AssetCatalog load_asset_catalog(const std::string& path, const ClassTable& classes);
+
+// The catalogue at `path`, read at the first get(): a scene drawn from
+// primitives never reads it, and the mesh props and mesh actors of one scene
+// share one read.
+class LazyAssetCatalog {
+ public:
+  LazyAssetCatalog(const ClassTable& classes, std::string path)
+      : classes_(classes), path_(std::move(path)) {}
+  const AssetCatalog& get() {
+    if (!catalog_) catalog_ = std::make_unique<AssetCatalog>(load_asset_catalog(path_, classes_));
+    return *catalog_;
+  }
+
+ private:
+  const ClassTable& classes_;
+  std::string path_;
+  std::unique_ptr<AssetCatalog> catalog_;
+};
 
 // The entry named `name`; fails naming the catalogue.
 const CatalogAsset& catalog_asset(const AssetCatalog& catalog, const std::string& name);

@@ -157,6 +157,13 @@ void turn_bone(const Skeleton& skeleton, SkeletonPose& pose, int bone,
   pose.rotation[bone] = (p.conjugate() * turn * p * b.rest_rotation).normalized();
 }
 
+std::vector<int> deforming_bones(const Skeleton& skeleton) {
+  std::vector<int> bones;
+  for (size_t b = 0; b < skeleton.bones.size(); ++b)
+    if (skeleton.bones[b].deforms) bones.push_back(static_cast<int>(b));
+  return bones;
+}
+
 Eigen::Vector3d rest_joint_position(const Skeleton& skeleton, int bone) {
   return skeleton.bones.at(bone).inverse_bind.inverse().translation();
 }

@@ -68,6 +68,10 @@ void set_bone_rotation(SkeletonPose& pose, int bone, const Eigen::Quaterniond& l
 void turn_bone(const Skeleton& skeleton, SkeletonPose& pose, int bone,
                const Eigen::Quaterniond& turn);
 
+// Indices of the bones some vertex is weighted to (Bone::deforms), in
+// skeleton order: the bones a skin hangs from.
+std::vector<int> deforming_bones(const Skeleton& skeleton);
+
 // Where a bone's joint is at the rest pose (model frame).
 Eigen::Vector3d rest_joint_position(const Skeleton& skeleton, int bone);
 

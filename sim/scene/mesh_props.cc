@@ -39,15 +39,6 @@ Eigen::AlignedBox3d model_bounds(const AssetModel& model) {
   return b;
 }
 
-MeshProps::MeshProps(const ClassTable& classes, std::string catalog_path)
-    : classes_(classes), catalog_path_(std::move(catalog_path)) {}
-
-const AssetCatalog& MeshProps::catalog() {
-  if (!catalog_)
-    catalog_ = std::make_unique<AssetCatalog>(load_asset_catalog(catalog_path_, classes_));
-  return *catalog_;
-}
-
 MeshProps::Model& MeshProps::model(const CatalogAsset& asset) {
   auto it = by_name_.find(asset.name);
   if (it != by_name_.end()) return *it->second;
@@ -78,9 +69,8 @@ PropGeoms MeshProps::place(Model& m, const Eigen::Vector3d& scale, const Eigen::
   }
   PropGeoms out;
   out.asset = m.name;
-  const Eigen::Quaterniond q(pose.linear());
-  const std::string placement = " pos=\"" + vec(pose.translation()) + "\" quat=\"" + num(q.w()) +
-                                " " + num(q.x()) + " " + num(q.y()) + " " + num(q.z()) + "\"";
+  const std::string placement =
+      " pos=\"" + vec(pose.translation()) + "\" quat=\"" + quat(pose.linear()) + "\"";
   for (size_t i = 0; i < m.set.mesh_names.size(); ++i) {
     out.xml += "<geom type=\"mesh\" mesh=\"" + m.prefix + "_s" + std::to_string(it->second) +
                "_mesh" + std::to_string(i) + "\"";

@@ -43,7 +43,7 @@ Eigen::AlignedBox3d model_bounds(const AssetModel& model);
 class MeshProps {
  public:
   // The catalogue is read when the first prop is asked for.
-  MeshProps(const ClassTable& classes, std::string catalog_path);
+  explicit MeshProps(LazyAssetCatalog& catalog) : catalog_(catalog) {}
 
   // Whether the catalogue has a model of `class_name` (a class without one
   // stays primitive, like an actor's).
@@ -83,14 +83,12 @@ class MeshProps {
     std::map<std::string, int> scales;  // "sx sy sz" -> index of its <mesh> set
     std::string mesh_xml;               // <mesh> elements of every scale used
   };
-  const AssetCatalog& catalog();
+  const AssetCatalog& catalog() { return catalog_.get(); }
   Model& model(const CatalogAsset& asset);
   // Mesh geoms of `m` scaled by `scale` (model axes) then placed by `pose`.
   PropGeoms place(Model& m, const Eigen::Vector3d& scale, const Eigen::Isometry3d& pose);
 
-  const ClassTable& classes_;
-  std::string catalog_path_;
-  std::unique_ptr<AssetCatalog> catalog_;
+  LazyAssetCatalog& catalog_;
   std::vector<std::unique_ptr<Model>> models_;  // in order of first use
   std::map<std::string, Model*> by_name_;
 };

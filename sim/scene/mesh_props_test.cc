@@ -27,7 +27,8 @@ size_t count(const std::string& text, const std::string& what) {
 
 struct Props {
   ClassTable classes = ClassTable::load(project_file("scenes/classes.yaml"));
-  MeshProps props{classes, project_file("assets/catalog.yaml")};
+  LazyAssetCatalog catalog{classes, project_file("assets/catalog.yaml")};
+  MeshProps props{catalog};
 };
 
 SceneModel scene_of(const Scenario& s) {

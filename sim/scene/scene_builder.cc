@@ -167,8 +167,7 @@ void check_pusher_start(const ActorSpec& a, const Instance& target,
 // and encoded once per scene however many actors wear it.
 class MeshVariants {
  public:
-  MeshVariants(const ClassTable& classes, std::string catalog_path)
-      : classes_(classes), catalog_path_(std::move(catalog_path)) {}
+  explicit MeshVariants(LazyAssetCatalog& catalog) : catalog_(catalog) {}
 
   struct Variant {
     std::string asset;  // the catalogue entry
@@ -188,9 +187,8 @@ class MeshVariants {
   // people are three different people). Actors are dressed in file order, so
   // the same scenario and seed always dress the same actors.
   const Variant* pick(const std::string& class_name, uint64_t appearance) {
-    if (!catalog_)
-      catalog_ = std::make_unique<AssetCatalog>(load_asset_catalog(catalog_path_, classes_));
-    const std::vector<const CatalogAsset*> assets = catalog_assets_of_class(*catalog_, class_name);
+    const std::vector<const CatalogAsset*> assets =
+        catalog_assets_of_class(catalog_.get(), class_name);
     if (assets.empty()) return nullptr;
     size_t i = Rng(derive_seed(appearance, 0x6d657368)).below(assets.size());
     for (size_t k = 0; k < assets.size(); ++k) {
@@ -206,7 +204,7 @@ class MeshVariants {
     Variant v;
     v.asset = entry.name;
     v.prefix = class_name + "_" + entry.name;
-    auto model = std::make_shared<const AssetModel>(load_catalog_asset(*catalog_, entry));
+    auto model = std::make_shared<const AssetModel>(load_catalog_asset(catalog_.get(), entry));
     if (class_name == "person")
       v.human = std::make_shared<const HumanRig>(model);
     else
@@ -218,9 +216,7 @@ class MeshVariants {
   const std::map<std::string, Variant>& used() const { return variants_; }
 
  private:
-  const ClassTable& classes_;
-  std::string catalog_path_;
-  std::unique_ptr<AssetCatalog> catalog_;
+  LazyAssetCatalog& catalog_;
   std::map<std::string, Variant> variants_;
 };
 
@@ -292,7 +288,8 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
   // Furniture props as catalogue meshes (props_style: mesh): desks here,
   // chairs among the pushables; each model loaded and encoded once.
   const bool mesh_props = scenario.props_style == "mesh";
-  MeshProps props(classes, scenario.asset_catalog_path);
+  LazyAssetCatalog catalog(classes, scenario.asset_catalog_path);
+  MeshProps props(catalog);
 
   // Static furniture: one fixed body per instance.
   for (const SceneObject& object : layout.objects) {
@@ -357,7 +354,7 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
   std::vector<std::pair<std::string, std::string>> plate_welds;  // plate body, mocap target
   std::vector<std::string> pending_plates;
   const bool mesh_style = scenario.actors_style == "mesh";
-  MeshVariants variants(classes, scenario.asset_catalog_path);
+  MeshVariants variants(catalog);
   std::string skins;  // <skin> elements, written in a second <asset> section
   for (const ActorSpec& a : scenario.actors) {
     if (!is_living_actor(a.type)) continue;

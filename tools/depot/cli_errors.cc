@@ -56,8 +56,7 @@ int report_parse_error(CLI::App& app, const CLI::ParseError& e) {
     problem = "unknown command '" + extra.front() + "' (expected " + known + ")";
   }
   std::fprintf(stderr, "depot: error: %s%s%s (see depot %s%s--help)\n", where.c_str(),
-               where.empty() ? "" : ": ", problem.c_str(), where.c_str(),
-               where.empty() ? "" : " ");
+               where.empty() ? "" : ": ", problem.c_str(), where.c_str(), where.empty() ? "" : " ");
   return kExitUsage;
 }
 

@@ -18,6 +18,7 @@
 #include "slam/detect/detector_config.h"
 #include "slam/detect/person_segmenter.h"
 #include "tools/depot/commands.h"
+#include "tools/depot/detector_options.h"
 #include "tools/runner/detector_calibration.h"
 #include "tools/runner/detector_eval.h"
 #include "tools/runner/segmenter_eval.h"
@@ -253,12 +254,8 @@ void register_perception_eval_commands(CLI::App* group) {
       ->capture_default_str();
   det->add_option("--detector-config", d->detector.detector_config,
                   "Detector YAML (default: scenes/detectors/ for the type)");
-  det->add_option_function<std::vector<std::string>>(
-      "--detector-set",
-      [d](const std::vector<std::string>& texts) {
-        for (const auto& t : texts)
-          d->detector.detector_overrides.push_back(parse_yaml_override(t, "--detector-set"));
-      },
+  add_detector_set_option(
+      det, d->detector.detector_overrides,
       "Change a simulated-detector key, e.g. --detector-set perfect=true (repeatable)");
   det->add_option("--detector-seed", d->detector.detector_seed,
                   "Seed of the simulated detector's errors")
@@ -289,12 +286,8 @@ void register_perception_eval_commands(CLI::App* group) {
       ->capture_default_str();
   cal->add_option("--detector-config", c->detector.detector_config,
                   "Detector YAML (default: scenes/detectors/ for the type)");
-  cal->add_option_function<std::vector<std::string>>(
-      "--detector-set",
-      [c](const std::vector<std::string>& texts) {
-        for (const auto& t : texts)
-          c->detector.detector_overrides.push_back(parse_yaml_override(t, "--detector-set"));
-      },
+  add_detector_set_option(
+      cal, c->detector.detector_overrides,
       "With --detector sim: change a key of the detector being fitted (repeatable)");
   cal->add_option("--class-map", c->class_map,
                   "Detector label -> class YAML (default: scenes/detectors/coco_to_depot.yaml)");

@@ -9,6 +9,7 @@
 #include "common/staged_file.h"
 #include "common/tum_io.h"
 #include "tools/depot/commands.h"
+#include "tools/depot/detector_options.h"
 #include "tools/runner/slam_runner.h"
 
 namespace fs = std::filesystem;
@@ -99,12 +100,8 @@ void add_rejection_options(CLI::App* cmd, runner::RunOptions& o) {
   cmd->add_option("--classes", o.classes, "A-priori class table YAML")
       ->default_str("scenes/apriori/depot.yaml for sim, else coco.yaml");
   cmd->add_option("--detector-seed", o.detector_seed, "Seed of the simulated detector's errors");
-  cmd->add_option_function<std::vector<std::string>>(
-      "--detector-set",
-      [&o](const std::vector<std::string>& texts) {
-        for (const auto& t : texts)
-          o.detector_overrides.push_back(parse_yaml_override(t, "--detector-set"));
-      },
+  add_detector_set_option(
+      cmd, o.detector_overrides,
       "Change a simulated-detector key, e.g. --detector-set miss_rate=0.2 (repeatable)");
   cmd->add_option("--settings", o.settings, "Settings YAML")
       ->default_str("the dataset's calibration.yaml");
