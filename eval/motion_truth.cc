@@ -1,5 +1,6 @@
 #include "eval/motion_truth.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -71,26 +72,40 @@ std::vector<double> MotionTruth::timestamps() const {
 }
 
 MotionTruth::KeypointTruth MotionTruth::classify_keypoints(
-    double timestamp, const std::vector<cv::KeyPoint>& keypoints, int near_radius) const {
+    double timestamp, const std::vector<cv::KeyPoint>& keypoints, float scale_factor) const {
   const std::string key = stamp_key(timestamp);
   const cv::Mat labels = load_labels(key);
   KeypointTruth out{std::vector<uint8_t>(keypoints.size(), 0),
-                    std::vector<uint8_t>(keypoints.size(), 0)};
+                    std::vector<uint8_t>(keypoints.size(), 0),
+                    std::vector<uint16_t>(keypoints.size(), 0)};
+  for (size_t i = 0; i < keypoints.size(); ++i) {
+    const int x = static_cast<int>(std::lround(keypoints[i].pt.x));
+    const int y = static_cast<int>(std::lround(keypoints[i].pt.y));
+    if (x >= 0 && y >= 0 && x < labels.cols && y < labels.rows)
+      out.instance[i] = labels.at<uint16_t>(y, x);
+  }
   auto moving = moving_ids_.find(key);
   if (moving == moving_ids_.end()) return out;
   auto moving_at = [&](int x, int y) {
     return x >= 0 && y >= 0 && x < labels.cols && y < labels.rows &&
            moving->second.count(labels.at<uint16_t>(y, x));
   };
+  // FAST-9's Bresenham circle of radius 3 (16 pixels).
+  static const int kCircle[16][2] = {{0, 3},  {1, 3},  {2, 2},  {3, 1},   {3, 0},   {3, -1},
+                                     {2, -2}, {1, -3}, {0, -3}, {-1, -3}, {-2, -2}, {-3, -1},
+                                     {-3, 0}, {-3, 1}, {-2, 2}, {-1, 3}};
   for (size_t i = 0; i < keypoints.size(); ++i) {
-    const int cx = static_cast<int>(std::lround(keypoints[i].pt.x));
-    const int cy = static_cast<int>(std::lround(keypoints[i].pt.y));
+    const cv::KeyPoint& kp = keypoints[i];
+    const int cx = static_cast<int>(std::lround(kp.pt.x));
+    const int cy = static_cast<int>(std::lround(kp.pt.y));
     out.on_moving[i] = moving_at(cx, cy);
-    bool near = out.on_moving[i];
-    for (int dy = -near_radius; dy <= near_radius && !near; ++dy)
-      for (int dx = -near_radius; dx <= near_radius && !near; ++dx)
-        near = dx * dx + dy * dy <= near_radius * near_radius && moving_at(cx + dx, cy + dy);
-    out.near_moving[i] = near;
+    if (out.on_moving[i]) continue;
+    const float scale = std::pow(scale_factor, static_cast<float>(std::max(0, kp.octave)));
+    bool touches = false;
+    for (int k = 0; k < 16 && !touches; ++k)
+      touches = moving_at(static_cast<int>(std::lround(kp.pt.x + scale * kCircle[k][0])),
+                          static_cast<int>(std::lround(kp.pt.y + scale * kCircle[k][1])));
+    out.boundary[i] = touches;
   }
   return out;
 }
@@ -110,21 +125,40 @@ double MotionTruth::moving_fraction(double timestamp) const {
 
 std::vector<uint8_t> MotionTruth::on_moving_object(
     double timestamp, const std::vector<cv::KeyPoint>& keypoints) const {
-  return classify_keypoints(timestamp, keypoints, 0).on_moving;
+  return classify_keypoints(timestamp, keypoints, 1.0f).on_moving;
 }
 
-void RejectionScore::add(const std::vector<uint8_t>& keep, const std::vector<uint8_t>& moving) {
+void RejectionScore::add(const std::vector<uint8_t>& keep, const std::vector<uint8_t>& moving,
+                         const std::vector<uint8_t>& boundary) {
   for (size_t i = 0; i < keep.size() && i < moving.size(); ++i) {
     const bool rejected = !keep[i];
-    if (rejected && moving[i])
+    const bool on_boundary = i < boundary.size() && boundary[i];
+    if (rejected && moving[i]) {
       ++true_positive;
-    else if (rejected)
+    } else if (rejected) {
       ++false_positive;
-    else if (moving[i])
+      boundary_false_positive += on_boundary;
+    } else if (moving[i]) {
       ++false_negative;
-    else
+    } else {
       ++true_negative;
+      boundary_true_negative += on_boundary;
+    }
   }
+}
+
+void RejectionScore::add(const RejectionScore& o) {
+  true_positive += o.true_positive;
+  false_positive += o.false_positive;
+  false_negative += o.false_negative;
+  true_negative += o.true_negative;
+  boundary_false_positive += o.boundary_false_positive;
+  boundary_true_negative += o.boundary_true_negative;
+}
+
+double RejectionScore::precision_without_boundary() const {
+  const long n = true_positive + false_positive - boundary_false_positive;
+  return n ? static_cast<double>(true_positive) / n : NAN;
 }
 
 double RejectionScore::precision() const {

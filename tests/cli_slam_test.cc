@@ -117,7 +117,7 @@ TEST(CliSlam, WritesOneRowPerKeypointConsistentWithTheStatistics) {
   int on_moving = 0, rejected_z = 0;
   std::ifstream k(rows);
   std::getline(k, line);
-  EXPECT_EQ(line, "frame,timestamp,x,y,octave,set,kept,depth_m,on_moving,near_moving");
+  EXPECT_EQ(line, "frame,timestamp,x,y,octave,set,kept,depth_m,on_moving,boundary,instance");
   while (std::getline(k, line)) {
     int frame, octave, kept, moving, near;
     double t, x, y, depth;

@@ -20,7 +20,27 @@ RejectionMode parse_rejection_mode(const std::string& name) {
   if (name == "orb+yolo") return RejectionMode::kOrbYolo;
   if (name == "orb+lk") return RejectionMode::kOrbLk;
   if (name == "full") return RejectionMode::kFull;
-  fail("--mode", "unknown mode '" + name + "' (expected orb, orb+yolo, orb+lk, full)");
+  if (name == "masked") return RejectionMode::kMasked;
+  fail("--mode", "unknown mode '" + name + "' (expected orb, orb+yolo, orb+lk, full, masked)");
+}
+
+RejectionParams::PersonMask parse_person_mask(const std::string& name) {
+  if (name == "depth") return RejectionParams::PersonMask::kDepth;
+  if (name == "segmentation") return RejectionParams::PersonMask::kSegmentation;
+  if (name == "both") return RejectionParams::PersonMask::kBoth;
+  fail("--person-mask", "unknown source '" + name + "' (expected depth, segmentation, both)");
+}
+
+const char* person_mask_name(RejectionParams::PersonMask source) {
+  switch (source) {
+    case RejectionParams::PersonMask::kDepth:
+      return "depth";
+    case RejectionParams::PersonMask::kSegmentation:
+      return "segmentation";
+    case RejectionParams::PersonMask::kBoth:
+      return "both";
+  }
+  return "depth";
 }
 
 const char* rejection_mode_name(RejectionMode m) {
@@ -33,15 +53,17 @@ const char* rejection_mode_name(RejectionMode m) {
       return "orb+lk";
     case RejectionMode::kFull:
       return "full";
+    case RejectionMode::kMasked:
+      return "masked";
   }
   return "orb";
 }
 
 bool mode_uses_detector(RejectionMode m) {
-  return m == RejectionMode::kOrbYolo || m == RejectionMode::kFull;
+  return m == RejectionMode::kOrbYolo || m == RejectionMode::kFull || m == RejectionMode::kMasked;
 }
 bool mode_uses_flow(RejectionMode m) {
-  return m == RejectionMode::kOrbLk || m == RejectionMode::kFull;
+  return m == RejectionMode::kOrbLk || m == RejectionMode::kFull || m == RejectionMode::kMasked;
 }
 
 RejectionFilter::RejectionFilter(RejectionMode mode, AprioriClasses classes, Detector* detector,
@@ -50,6 +72,7 @@ RejectionFilter::RejectionFilter(RejectionMode mode, AprioriClasses classes, Det
       classes_(std::move(classes)),
       detector_(detector),
       params_(params),
+      box_tracker_(params.tracking),
       flow_(params.flow) {
   if (mode_uses_detector(mode_)) {
     if (!detector_) fail(rejection_mode_name(mode_), "this mode needs a detector");
@@ -116,6 +139,12 @@ void RejectionFilter::filter(const FrameImages& images, const std::vector<cv::Ke
     case RejectionMode::kFull:
       filter_full(images, keypoints, keep);
       break;
+    case RejectionMode::kMasked: {
+      const std::vector<float> depth = keypoint_depths(images.depth, keypoints);
+      sets_ = masked_sets(images, keypoints);
+      decide_sets(images, keypoints, depth, keep);
+      break;
+    }
   }
   stats_.kept = 0;
   for (uint8_t k : keep) stats_.kept += k;
@@ -134,6 +163,67 @@ void RejectionFilter::filter_full(const FrameImages& images,
   if (params_.background_depth_margin > 0)
     split_boxes_by_depth(keypoints, depth, detections_, classes_, params_.background_depth_margin,
                          sets);
+  sets_ = std::move(sets);
+  decide_sets(images, keypoints, depth, keep);
+}
+
+std::vector<PointSet> RejectionFilter::masked_sets(const FrameImages& images,
+                                                   const std::vector<cv::KeyPoint>& keypoints) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<Detection> movable;  // dynamic and potentially dynamic objects
+  for (const Detection& d : detections_)
+    if (classes_.classify(d.class_name) != MotionClass::kStatic) movable.push_back(d);
+  objects_ = box_tracker_.update(movable);
+  masks_.clear();
+  const bool segment = segmenter_ && params_.person_mask != RejectionParams::PersonMask::kDepth;
+  const cv::Mat* person = nullptr;
+  for (TrackedBox& object : objects_) {
+    ObjectMask mask = segment_object(images.depth, object.detection.box, params_.mask);
+    stats_.masks += mask.valid();
+    if (segment && object.detection.class_name == "person") {
+      if (!person) {
+        const auto ts = std::chrono::steady_clock::now();
+        person = &segmenter_->mask(images.bgr);
+        stats_.segment_ms += ms_since(ts);
+      }
+      mask = with_segmentation(mask, *person, object.detection.box, params_.mask,
+                               params_.person_mask == RejectionParams::PersonMask::kBoth);
+    }
+    if (object.missed > 0) {
+      stats_.carried++;
+      // Re-centre the carried box on its object, so drift does not build up.
+      if (mask.valid()) {
+        object.detection.box = mask.bounds();
+        box_tracker_.correct(object.track_id, object.detection.box);
+      }
+    }
+    masks_.push_back(std::move(mask));
+  }
+
+  std::vector<PointSet> sets(keypoints.size(), PointSet::kP);
+  for (size_t i = 0; i < keypoints.size(); ++i) {
+    const cv::KeyPoint& kp = keypoints[i];
+    for (size_t k = 0; k < objects_.size() && sets[i] != PointSet::kZ; ++k) {
+      const bool dynamic =
+          classes_.classify(objects_[k].detection.class_name) == MotionClass::kDynamic;
+      const PointSet object_set = dynamic ? PointSet::kZ : PointSet::kQ;
+      const ObjectMask& mask = masks_[k];
+      // A box whose object has no depth at all: the whole box, as the paper.
+      const bool on_object = mask.valid()
+                                 ? mask.touches(kp, params_.scale_factor, params_.mask_reach)
+                                 : objects_[k].detection.box.contains(kp.pt);
+      if (on_object) sets[i] = std::max(sets[i], object_set);
+    }
+  }
+  stats_.mask_ms = ms_since(t0);
+  return sets;
+}
+
+void RejectionFilter::decide_sets(const FrameImages& images,
+                                  const std::vector<cv::KeyPoint>& keypoints,
+                                  const std::vector<float>& depth, std::vector<uint8_t>& keep) {
+  const std::vector<PointSet>& sets = sets_;
+  const bool ego = params_.ego_motion_flow && images.camera;
   std::vector<size_t> q_index, p_index;
   for (size_t i = 0; i < sets.size(); ++i) {
     if (sets[i] == PointSet::kZ) {
@@ -146,7 +236,6 @@ void RejectionFilter::filter_full(const FrameImages& images,
     }
   }
   stats_.q = static_cast<int>(q_index.size());
-  sets_ = sets;
   const bool test_p = params_.test_static_points;
   if ((q_index.empty() && !test_p) || !flow_.has_previous()) {
     stats_.q_to_p = stats_.q;  // nothing to test, or no previous frame to test against

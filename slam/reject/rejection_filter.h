@@ -5,23 +5,38 @@
 //   orb+yolo every point inside a dynamic box
 //   orb+lk   points whose LK flow deviates from the mean flow (all points)
 //   full     Z rejected, Q kept only if its flow agrees with P's mean flow
+// and our mode beyond boxes:
+//   masked   boxes of dynamic and potentially dynamic classes are tracked
+//            across frames (box_tracker.h: a missed detection is bridged for
+//            a few frames) and each is segmented from depth (object_mask.h;
+//            person boxes optionally with a person segmenter). A keypoint
+//            whose centre or FAST circle touches a dynamic object's mask
+//            goes to Z, a potentially dynamic one's to Q; a keypoint in the
+//            grown box without depth is undecided and goes to Q (the flow
+//            test); a keypoint in the box at another depth is background and
+//            goes to P. A box whose object has no depth at all falls back to
+//            the paper's rule (Z or Q whole). Q then as in full.
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "slam/detect/detection.h"
 #include "slam/detect/detection_thread.h"
+#include "slam/detect/person_segmenter.h"
 #include "slam/reject/apriori_classes.h"
+#include "slam/reject/box_tracker.h"
 #include "slam/reject/ego_motion_flow.h"
 #include "slam/reject/flow_test.h"
+#include "slam/reject/object_mask.h"
 #include "slam/reject/optical_flow.h"
 #include "slam/reject/point_sets.h"
 #include "slam/track/keypoint_filter.h"
 
 namespace depot::slam {
 
-enum class RejectionMode { kOrb, kOrbYolo, kOrbLk, kFull };
-RejectionMode parse_rejection_mode(const std::string& name);  // orb | orb+yolo | orb+lk | full
+enum class RejectionMode { kOrb, kOrbYolo, kOrbLk, kFull, kMasked };
+// orb | orb+yolo | orb+lk | full | masked
+RejectionMode parse_rejection_mode(const std::string& name);
 const char* rejection_mode_name(RejectionMode mode);
 bool mode_uses_detector(RejectionMode mode);
 bool mode_uses_flow(RejectionMode mode);
@@ -42,7 +57,21 @@ struct RejectionParams {
   // Our extension, off by default: test P's points too, so moving points the
   // detector missed (or that a jittered box left out) are rejected as well.
   bool test_static_points = false;
+  // masked mode:
+  ObjectMaskParams mask;
+  BoxTrackerParams tracking;
+  float scale_factor = 1.2f;  // the ORB pyramid's, for the FAST circle at a keypoint's level
+  // A keypoint goes with an object when its centre pixel is on the object's
+  // mask, or (reach > 0) its FAST circle, radius scaled by `mask_reach`,
+  // touches it (1 = the boundary rule of eval/motion_truth.h).
+  float mask_reach = 1.0f;
+  // Person boxes with a segmenter (set_segmenter): its mask alone, or its
+  // mask and the depth mask together (a pixel on either is on the person).
+  enum class PersonMask { kDepth, kSegmentation, kBoth };
+  PersonMask person_mask = PersonMask::kDepth;
 };
+RejectionParams::PersonMask parse_person_mask(const std::string& name);  // depth|segmentation|both
+const char* person_mask_name(RejectionParams::PersonMask source);
 
 // Per-frame statistics.
 struct RejectionStats {
@@ -56,7 +85,11 @@ struct RejectionStats {
   double wait_ms = 0;    // how long tracking waited for the detector
   double detect_ms = 0;  // the detector's own time (hidden by the thread when < extraction)
   double flow_ms = 0;
-  double filter_ms = 0;  // the whole rejection stage after detection
+  double filter_ms = 0;   // the whole rejection stage after detection
+  int carried = 0;        // masked: boxes carried by the box tracker (missed detections)
+  int masks = 0;          // masked: objects segmented from depth
+  double mask_ms = 0;     // masked: box tracking and depth segmentation
+  double segment_ms = 0;  // masked: the person segmenter
 };
 
 class RejectionFilter : public KeypointFilter {
@@ -69,23 +102,39 @@ class RejectionFilter : public KeypointFilter {
   void filter(const FrameImages& images, const std::vector<cv::KeyPoint>& keypoints,
               std::vector<uint8_t>& keep) override;
 
+  // masked mode: person masks from this segmenter (not owned; null = none).
+  void set_segmenter(PersonSegmenter* segmenter) { segmenter_ = segmenter; }
+
   RejectionMode mode() const { return mode_; }
+  const AprioriClasses& classes() const { return classes_; }
   const RejectionStats& last_stats() const { return stats_; }
   const std::vector<Detection>& last_detections() const { return detections_; }
   // The last frame's keypoints (all, before rejection) and decisions.
   const std::vector<cv::KeyPoint>& last_keypoints() const { return keypoints_; }
   const std::vector<uint8_t>& last_keep() const { return keep_; }
-  // The set of each keypoint (full mode; P for the other modes).
+  // The set of each keypoint (full and masked; Z = rejected by orb+yolo).
   const std::vector<PointSet>& last_sets() const { return sets_; }
+  // masked: the frame's tracked boxes and their objects' masks.
+  const std::vector<TrackedBox>& last_objects() const { return objects_; }
+  const std::vector<ObjectMask>& last_masks() const { return masks_; }
 
  private:
   void filter_full(const FrameImages& images, const std::vector<cv::KeyPoint>& keypoints,
                    std::vector<uint8_t>& keep);
+  std::vector<PointSet> masked_sets(const FrameImages& images,
+                                    const std::vector<cv::KeyPoint>& keypoints);
+  // Z rejected, Q (and P with test_static_points) decided by the flow test.
+  void decide_sets(const FrameImages& images, const std::vector<cv::KeyPoint>& keypoints,
+                   const std::vector<float>& depth, std::vector<uint8_t>& keep);
 
   RejectionMode mode_;
   AprioriClasses classes_;
   Detector* detector_;
+  PersonSegmenter* segmenter_ = nullptr;
   RejectionParams params_;
+  BoxTracker box_tracker_;
+  std::vector<TrackedBox> objects_;
+  std::vector<ObjectMask> masks_;
   std::unique_ptr<DetectionThread> thread_;
   SparseFlow flow_;
   RejectionStats stats_;

@@ -8,8 +8,10 @@
 #include "common/error.h"
 #include "common/staged_file.h"
 #include "common/tum_io.h"
+#include "common/yaml_overrides.h"
 #include "tools/depot/commands.h"
 #include "tools/depot/detector_options.h"
+#include "tools/runner/rejection_overlay.h"
 #include "tools/runner/slam_runner.h"
 
 namespace fs = std::filesystem;
@@ -24,16 +26,20 @@ void check_options_used_by_mode(const std::string& mode, const CLI::App& cmd) {
   const struct {
     const char* option;
     bool used;
-  } options[] = {{"--detector", detector},
-                 {"--detector-config", detector},
-                 {"--detections", detector},
-                 {"--detector-seed", detector},
-                 {"--detector-set", detector},
-                 {"--classes", detector},
-                 {"--keypoints", m != slam::RejectionMode::kOrb},
-                 {"--background-margin", m == slam::RejectionMode::kFull},
-                 {"--ego-flow", m == slam::RejectionMode::kFull},
-                 {"--test-static", m == slam::RejectionMode::kFull}};
+  } options[] = {
+      {"--detector", detector},
+      {"--detector-config", detector},
+      {"--detections", detector},
+      {"--detector-seed", detector},
+      {"--detector-set", detector},
+      {"--classes", detector},
+      {"--keypoints", m != slam::RejectionMode::kOrb},
+      {"--overlays", m != slam::RejectionMode::kOrb},
+      {"--background-margin", m == slam::RejectionMode::kFull},
+      {"--ego-flow", m == slam::RejectionMode::kFull || m == slam::RejectionMode::kMasked},
+      {"--test-static", m == slam::RejectionMode::kFull || m == slam::RejectionMode::kMasked},
+      {"--person-mask", m == slam::RejectionMode::kMasked},
+      {"--segmenter", m == slam::RejectionMode::kMasked}};
   for (const auto& o : options)
     if (!o.used && cmd.count(o.option))
       fail(o.option, std::string("has no effect in --mode ") + mode +
@@ -53,6 +59,8 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
   for (const std::string* path :
        {&a.output, &a.keyframes, &a.options.stats_csv, &a.options.keypoints_csv})
     if (!path->empty()) check_output_file(*path);
+  if (!a.options.overlays.empty())
+    check_replaceable(a.options.overlays, runner::overlay_folder_kind(), false);
   if (cmd.count("--frames")) a.options.frames = a.frames;
   if (!a.options.quiet)
     std::fprintf(stderr, "depot slam run: %s, mode %s\n", a.options.dataset.c_str(),
@@ -75,10 +83,11 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
   std::printf("); wrote %s\n", a.output.c_str());
   if (s.scored && a.options.mode != "orb") {
     std::printf(
-        "rejection vs ground truth: precision %.3f recall %.3f (%ld of %ld static points thrown "
-        "away, %ld of them within 4 px of a moving object)\n",
-        s.score.precision(), s.score.recall(), s.score.false_positive, s.score.static_points(),
-        s.false_positive_near_moving);
+        "rejection vs ground truth: precision %.3f recall %.3f with boundary points left out; "
+        "precision %.3f with them counted as static (%ld of %ld static points thrown away, %ld of "
+        "them boundary points)\n",
+        s.score.precision_without_boundary(), s.score.recall(), s.score.precision(),
+        s.score.false_positive, s.score.static_points(), s.score.boundary_false_positive);
   }
 }
 
@@ -86,8 +95,9 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
 
 void add_rejection_options(CLI::App* cmd, runner::RunOptions& o) {
   cmd->add_option("--mode", o.mode,
-                  "Rejection mode (the paper's ablation; orb = plain ORB-SLAM2, no rejection)")
-      ->check(CLI::IsMember({"orb", "orb+yolo", "orb+lk", "full"}));
+                  "Rejection mode: the paper's ablation (orb = plain ORB-SLAM2, no rejection; "
+                  "orb+yolo, orb+lk, full) or masked (objects segmented inside tracked boxes)")
+      ->check(CLI::IsMember({"orb", "orb+yolo", "orb+lk", "full", "masked"}));
   cmd->add_option(
          "--detector", o.detector,
          "Detector: sim (simulated datasets), darknet (Yolo-Fastest), xl (Yolo-Fastest XL), "
@@ -109,11 +119,27 @@ void add_rejection_options(CLI::App* cmd, runner::RunOptions& o) {
                   "Our extension of full: boxed points without depth, or this far (m) behind a "
                   "dynamic box's object, are background and go to P (0 = the paper exactly)")
       ->check(CLI::Range(0.0, 10.0));
-  cmd->add_flag("--ego-flow", o.ego_motion_flow,
-                "Our extension of full: test flow against the camera's motion fitted to P (by "
-                "PnP on depth) instead of P's mean flow");
+  cmd->add_flag(
+      "--ego-flow", o.ego_motion_flow,
+      "Our extension of full and masked: test flow against the camera's motion fitted to P (by "
+      "PnP on depth) instead of P's mean flow");
   cmd->add_flag("--test-static", o.test_static_points,
-                "Our extension of full: apply the flow test to P's points too");
+                "Our extension of full and masked: apply the flow test to P's points too");
+  cmd->add_option("--person-mask", o.person_mask,
+                  "masked: person masks from depth, a person segmenter, or both")
+      ->check(CLI::IsMember({"depth", "segmentation", "both"}))
+      ->default_str("depth");
+  cmd->add_option("--segmenter", o.segmenter, "masked: person segmenter YAML")
+      ->default_str("scenes/segmenters/selfie.yaml");
+  cmd->add_option_function<std::vector<std::string>>(
+      "--rejection-set",
+      [&o](const std::vector<std::string>& texts) {
+        for (const auto& t : texts)
+          runner::apply_rejection_setting(o, parse_yaml_override(t, "--rejection-set"),
+                                          "--rejection-set " + t);
+      },
+      "Change a rejection setting as a sweep's rejection.KEY, e.g. --rejection-set "
+      "mask.extent=0.8 (repeatable; keys in tools/runner/slam_runner.h)");
   cmd->add_option_function<std::string>(
          "--mapping", [&o](const std::string& v) { o.sync = v == "sync"; },
          "Local mapping: threaded (its own thread, as ORB-SLAM2; faster, not reproducible) or "
@@ -141,7 +167,12 @@ void register_slam_commands(CLI::App& app) {
                   "Per-frame statistics CSV (|Z| |Q| |Q->P| |P|, flow, times)");
   run->add_option("--keypoints", args->options.keypoints_csv,
                   "Per-keypoint CSV: position, set (Z/Q/P), kept, depth and, on simulated data, "
-                  "whether it is on or near a moving object (for analysing rejection)");
+                  "whether it is on a moving object or its boundary, and the instance there");
+  run->add_option("--overlays", args->options.overlays,
+                  "Folder of per-frame pictures of the rejection (boxes, object masks, keypoints "
+                  "coloured by decision and, on simulated data, by truth)");
+  run->add_option("--overlays-every", args->options.overlays_every, "A picture of every n-th frame")
+      ->check(CLI::Range(1, 1000000));
   run->add_flag("-q,--quiet", args->options.quiet, "No progress line");
   add_rejection_options(run, args->options);
   run->callback([args, run] { run_slam(*args, *run); });

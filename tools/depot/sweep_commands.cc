@@ -115,7 +115,7 @@ void add_run_options(CLI::App* cmd, SweepArgs& a) {
       ->default_str("");
   cmd->add_option("--modes", a.modes, "Modes, comma separated")
       ->delimiter(',')
-      ->check(CLI::IsMember({"orb", "orb+yolo", "orb+lk", "full"}));
+      ->check(CLI::IsMember({"orb", "orb+yolo", "orb+lk", "full", "masked"}));
   cmd->add_option("--seeds", a.seeds, "Seeds per cell (scenario and detector)")
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--frames", a.frames, "Frames per run")->check(CLI::Range(10, 100000));

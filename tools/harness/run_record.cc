@@ -64,12 +64,14 @@ nlohmann::json to_json(const RunRecord& r) {
             {"rotation_std_deg", number(r.rpe_rot_std)}}},
           {"rejection",
            {{"precision", number(r.precision)},
+            {"precision_without_boundary", number(r.precision_without_boundary)},
             {"recall", number(r.recall)},
             {"true_positive", r.true_positive},
             {"false_positive", r.false_positive},
             {"false_negative", r.false_negative},
             {"true_negative", r.true_negative},
-            {"false_positive_near_moving", r.false_positive_near_moving}}},
+            {"false_positive_boundary", r.false_positive_boundary},
+            {"true_negative_boundary", r.true_negative_boundary}}},
           {"timing",
            {{"median_frame_ms", number(r.median_frame_ms)},
             {"rejection_ms", number(r.rejection_ms)},
@@ -126,7 +128,9 @@ RunRecord read_run_record(const std::string& path) {
     r.false_positive = rej.at("false_positive").get<long>();
     r.false_negative = rej.at("false_negative").get<long>();
     r.true_negative = rej.at("true_negative").get<long>();
-    r.false_positive_near_moving = rej.value("false_positive_near_moving", 0L);
+    r.precision_without_boundary = number(rej, "precision_without_boundary");
+    r.false_positive_boundary = rej.at("false_positive_boundary").get<long>();
+    r.true_negative_boundary = rej.at("true_negative_boundary").get<long>();
     const auto& timing = j.at("timing");
     r.median_frame_ms = number(timing, "median_frame_ms");
     r.rejection_ms = number(timing, "rejection_ms");

@@ -36,9 +36,11 @@ struct RunRecord {
   double rpe_delta_s = 1.0;
   double rpe_trans_rmse = NAN, rpe_trans_std = NAN;  // m
   double rpe_rot_rmse = NAN, rpe_rot_std = NAN;      // deg
-  double precision = NAN, recall = NAN;              // rejection vs ground truth
+  // Rejection vs ground truth; `precision` counts boundary points (see
+  // eval/motion_truth.h) as static, `precision_without_boundary` leaves them out.
+  double precision = NAN, precision_without_boundary = NAN, recall = NAN;
   long true_positive = 0, false_positive = 0, false_negative = 0, true_negative = 0;
-  long false_positive_near_moving = 0;  // of false_positive: within 4 px of a mover
+  long false_positive_boundary = 0, true_negative_boundary = 0;  // boundary points among them
   double median_frame_ms = NAN, rejection_ms = NAN;
   double moving_share = NAN;  // from the dataset record
   double seconds = 0;         // wall time of the run

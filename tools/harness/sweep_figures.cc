@@ -11,12 +11,12 @@ namespace depot::harness {
 namespace {
 
 // One colour per mode in every report: orb red, orb+yolo blue, orb+lk
-// orange, full green.
+// orange, full green, masked the fifth.
 size_t mode_colour_index(const std::string& mode) {
-  static const char* modes[] = {"orb", "orb+yolo", "orb+lk", "full"};
-  for (size_t i = 0; i < 4; ++i)
+  static const char* modes[] = {"orb", "orb+yolo", "orb+lk", "full", "masked"};
+  for (size_t i = 0; i < 5; ++i)
     if (mode == modes[i]) return i;
-  return 4;
+  return 5;
 }
 
 // A level's position on a numeric axis (text levels keep their order).

@@ -160,10 +160,12 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
     if (job.mode != "orb") {
       r.rejection_ms = s.filter_ms;
       r.precision = s.score.precision();
+      r.precision_without_boundary = s.score.precision_without_boundary();
       r.recall = s.score.recall();
       r.true_positive = s.score.true_positive;
       r.false_positive = s.score.false_positive;
-      r.false_positive_near_moving = s.false_positive_near_moving;
+      r.false_positive_boundary = s.score.boundary_false_positive;
+      r.true_negative_boundary = s.score.boundary_true_negative;
       r.false_negative = s.score.false_negative;
       r.true_negative = s.score.true_negative;
     }

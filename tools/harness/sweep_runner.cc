@@ -69,8 +69,10 @@ std::string describe(const SweepJob& job, const SweepLayout& layout) {
     if (!r.ok)
       std::snprintf(buf, sizeof(buf), "%s: no trajectory (%s)", job.id.c_str(), r.error.c_str());
     else if (std::isfinite(r.precision))
-      std::snprintf(buf, sizeof(buf), "%s: ATE %.4f m, precision %.2f recall %.2f, lost %d",
-                    job.id.c_str(), r.ate_rmse, r.precision, r.recall, r.lost);
+      std::snprintf(buf, sizeof(buf),
+                    "%s: ATE %.4f m, precision %.2f (boundary static %.2f) recall %.2f, lost %d",
+                    job.id.c_str(), r.ate_rmse, r.precision_without_boundary, r.precision, r.recall,
+                    r.lost);
     else
       std::snprintf(buf, sizeof(buf), "%s: ATE %.4f m, lost %d", job.id.c_str(), r.ate_rmse,
                     r.lost);

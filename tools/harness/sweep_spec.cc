@@ -86,11 +86,11 @@ SweepParameter parse_sweep_parameter(const std::string& text, const std::string&
 void validate(const SweepSpec& spec, const std::string& where) {
   if (spec.scenarios.empty()) fail(where, "no scenario");
   if (spec.modes.empty()) fail(where, "no mode");
-  static const std::set<std::string> known = {"orb", "orb+yolo", "orb+lk", "full"};
+  static const std::set<std::string> known = {"orb", "orb+yolo", "orb+lk", "full", "masked"};
   std::set<std::string> seen;
   for (const auto& m : spec.modes) {
     if (!known.count(m))
-      fail(where, "unknown mode '" + m + "' (expected orb, orb+yolo, orb+lk, full)");
+      fail(where, "unknown mode '" + m + "' (expected orb, orb+yolo, orb+lk, full, masked)");
     if (!seen.insert(m).second) fail(where, "mode '" + m + "' given twice");
   }
   std::set<std::string> names;

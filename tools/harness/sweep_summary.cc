@@ -93,7 +93,7 @@ SweepSummary summarize_records(const SweepPlan& plan, const std::vector<RunRecor
       CellModeSummary e;
       e.cell = c;
       e.mode = mode;
-      std::vector<double> ate, ate_sd, rt, rt_sd, rr, rr_sd, p, r, tracked, moving;
+      std::vector<double> ate, ate_sd, rt, rt_sd, rr, rr_sd, p, pb, r, tracked, moving;
       for (const RunRecord* run : groups[{c, mode}]) {
         e.runs_by_seed[run->seed] = *run;
         ++e.runs;
@@ -106,6 +106,7 @@ SweepSummary summarize_records(const SweepPlan& plan, const std::vector<RunRecor
         rr.push_back(run->rpe_rot_rmse);
         rr_sd.push_back(run->rpe_rot_std);
         p.push_back(run->precision);
+        pb.push_back(run->precision_without_boundary);
         r.push_back(run->recall);
         tracked.push_back(run->frames ? static_cast<double>(run->tracked) / run->frames : NAN);
         moving.push_back(run->moving_share);
@@ -117,6 +118,7 @@ SweepSummary summarize_records(const SweepPlan& plan, const std::vector<RunRecor
       e.rpe_rot_rmse = mean_std(rr);
       e.rpe_rot_std = mean_std(rr_sd);
       e.precision = mean_std(p);
+      e.precision_without_boundary = mean_std(pb);
       e.recall = mean_std(r);
       e.tracked_share = mean_std(tracked);
       e.moving_share = mean_std(moving);

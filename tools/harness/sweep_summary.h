@@ -28,9 +28,10 @@ struct CellModeSummary {
   MeanStd ate_rmse, ate_std;              // m
   MeanStd rpe_trans_rmse, rpe_trans_std;  // m
   MeanStd rpe_rot_rmse, rpe_rot_std;      // deg
-  MeanStd precision, recall;
-  MeanStd tracked_share;  // frames in trajectory / frames
-  MeanStd moving_share;   // pixels on moving objects
+  MeanStd precision, recall;              // boundary points counted as static
+  MeanStd precision_without_boundary;     // boundary points left out
+  MeanStd tracked_share;                  // frames in trajectory / frames
+  MeanStd moving_share;                   // pixels on moving objects
   std::map<int, RunRecord> runs_by_seed;
 };
 

@@ -11,7 +11,9 @@
 #include "common/error.h"
 #include "common/interrupt.h"
 #include "common/percentile.h"
+#include "common/png_codec.h"
 #include "common/progress.h"
+#include "common/staged_directory.h"
 #include "common/staged_file.h"
 #include "common/yaml_overrides.h"
 #include "slam/detect/detection_file.h"
@@ -21,6 +23,7 @@
 #include "slam/io/settings.h"
 #include "slam/io/tum_sequence.h"
 #include "slam/system/system.h"
+#include "tools/runner/rejection_overlay.h"
 
 namespace fs = std::filesystem;
 
@@ -72,15 +75,16 @@ std::unique_ptr<slam::Detector> make_detector(const RunOptions& o, const std::st
 namespace {
 
 const char* const kKeypointHeader =
-    "frame,timestamp,x,y,octave,set,kept,depth_m,on_moving,near_moving\n";
+    "frame,timestamp,x,y,octave,set,kept,depth_m,on_moving,boundary,instance\n";
 
 char set_letter(slam::PointSet set) {
   return set == slam::PointSet::kZ ? 'Z' : set == slam::PointSet::kQ ? 'Q' : 'P';
 }
 
 // One row per keypoint of the frame: where it is, its set and decision, its
-// depth, and (simulated data) whether it lies on or within 4 px of a moving
-// object; empty truth columns on real data.
+// depth, and (simulated data) whether it lies on a moving object or on its
+// boundary (MotionTruth's rule) and the instance id there (objects.json);
+// empty truth columns on real data.
 void write_keypoint_rows(std::ostream& out, size_t frame, double timestamp,
                          const slam::RejectionFilter& filter, const cv::Mat& depth,
                          const eval::MotionTruth::KeypointTruth* truth) {
@@ -93,10 +97,10 @@ void write_keypoint_rows(std::ostream& out, size_t frame, double timestamp,
                   static_cast<int>(filter.last_keep()[k]), depths[k]);
     out << line;
     if (truth)
-      out << static_cast<int>(truth->on_moving[k]) << ','
-          << static_cast<int>(truth->near_moving[k]);
+      out << static_cast<int>(truth->on_moving[k]) << ',' << static_cast<int>(truth->boundary[k])
+          << ',' << truth->instance[k];
     else
-      out << ',';
+      out << ",,";
     out << '\n';
   }
 }
@@ -129,16 +133,49 @@ void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const s
       o.ego_motion_flow = value.as<bool>();
     } else if (setting.key == "test_static") {
       o.test_static_points = value.as<bool>();
+    } else if (setting.key == "person_mask") {
+      slam::parse_person_mask(setting.value);
+      o.person_mask = setting.value;
+    } else if (setting.key == "tracking.max_missed") {
+      const int n = value.as<int>();
+      if (n < 0 || n > 1000) fail(where, "tracking.max_missed must be in [0, 1000] frames");
+      o.tracking.max_missed = n;
+    } else if (setting.key == "mask.stride") {
+      const int n = value.as<int>();
+      if (n < 1 || n > 16) fail(where, "mask.stride must be in [1, 16] px");
+      o.mask.stride = n;
     } else {
+      struct Key {
+        const char* name;
+        float* field;
+        float lo, hi;
+      } keys[] = {{"mask.grow", &o.mask.grow, 0.0f, 2.0f},
+                  {"mask.extent", &o.mask.extent_m, 0.01f, 10.0f},
+                  {"mask.edge_step", &o.mask.edge_step_m, 0.0f, 10.0f},
+                  {"mask.edge_step_per_m", &o.mask.edge_step_per_m, 0.0f, 1.0f},
+                  {"mask.reach", &o.mask_reach, 0.0f, 3.0f},
+                  {"tracking.min_iou", &o.tracking.min_iou, 0.0f, 1.0f}};
+      for (const Key& k : keys) {
+        if (setting.key != k.name) continue;
+        const float v = value.as<float>();
+        if (!(v >= k.lo && v <= k.hi))
+          fail(where, std::string(k.name) + " must be in [" + std::to_string(k.lo) + ", " +
+                          std::to_string(k.hi) + "]");
+        *k.field = v;
+        return;
+      }
       fail(where, "unknown rejection setting '" + setting.key +
-                      "' (expected background_margin, ego_flow, test_static)");
+                      "' (expected background_margin, ego_flow, test_static, person_mask, "
+                      "mask.grow, mask.extent, mask.edge_step, mask.edge_step_per_m, mask.stride, "
+                      "mask.reach, "
+                      "tracking.max_missed, tracking.min_iou)");
     }
   } catch (const YAML::Exception&) {
     fail(where, "bad value '" + setting.value + "' for rejection setting '" + setting.key + "'");
   }
 }
 
-RejectionSetup make_rejection(const RunOptions& o) {
+RejectionSetup make_rejection(const RunOptions& o, float scale_factor) {
   RejectionSetup setup;
   const slam::RejectionMode mode = slam::parse_rejection_mode(o.mode);
   if (mode == slam::RejectionMode::kOrb) return setup;
@@ -157,8 +194,20 @@ RejectionSetup make_rejection(const RunOptions& o) {
   params.background_depth_margin = o.background_depth_margin;
   params.ego_motion_flow = o.ego_motion_flow;
   params.test_static_points = o.test_static_points;
+  params.scale_factor = scale_factor;
+  params.person_mask = slam::parse_person_mask(o.person_mask);
+  params.mask = o.mask;
+  params.mask_reach = o.mask_reach;
+  params.tracking = o.tracking;
   setup.filter =
       std::make_unique<slam::RejectionFilter>(mode, classes, setup.detector.get(), params);
+  if (mode == slam::RejectionMode::kMasked &&
+      params.person_mask != slam::RejectionParams::PersonMask::kDepth) {
+    const std::string config =
+        o.segmenter.empty() ? project_file("scenes/segmenters/selfie.yaml") : o.segmenter;
+    setup.segmenter = std::make_unique<slam::PersonSegmenter>(slam::load_segmenter_config(config));
+    setup.filter->set_segmenter(setup.segmenter.get());
+  }
   return setup;
 }
 
@@ -191,7 +240,7 @@ RunSummary run_sequence(const RunOptions& o) {
 
   // Rejection: mode, detector and class table, all checked before any work.
   const bool simulated = eval::MotionTruth::available(o.dataset);
-  RejectionSetup rejection = make_rejection(o);
+  RejectionSetup rejection = make_rejection(o, settings.orb.scale_factor);
   slam::RejectionFilter* filter = rejection.filter.get();
   if (rejection.detector) summary.detector_name = rejection.detector->name();
   std::unique_ptr<eval::MotionTruth> truth;
@@ -207,9 +256,22 @@ RunSummary run_sequence(const RunOptions& o) {
            "filter_ms,total_ms,true_positive,false_positive,false_negative,false_positive_z,"
            "false_positive_q\n";
   }
+  std::optional<StagedDirectory> overlays;
+  std::optional<std::ofstream> overlay_index;
+  if (!o.overlays.empty()) {
+    if (!filter)
+      fail(o.overlays,
+           "rejection pictures need a rejection mode (orb+yolo, orb+lk, full or masked)");
+    overlays.emplace(o.overlays, overlay_folder_kind(), false);
+    fs::create_directories(fs::path(overlays->path()) / "frames");
+    overlay_index.emplace((fs::path(overlays->path()) / "index.txt").string());
+    *overlay_index << "# frame timestamp picture (depot slam run --overlays; colours: "
+                      "tools/runner/rejection_overlay.h)\n";
+  }
   if (!o.keypoints_csv.empty()) {
     if (!filter)
-      fail(o.keypoints_csv, "per-keypoint rows need a rejection mode (orb+yolo, orb+lk or full)");
+      fail(o.keypoints_csv,
+           "per-keypoint rows need a rejection mode (orb+yolo, orb+lk, full or masked)");
     keypoint_rows.emplace(o.keypoints_csv);
     keypoint_rows->stream() << kKeypointHeader;
   }
@@ -242,21 +304,28 @@ RunSummary run_sequence(const RunOptions& o) {
     long fp_z = 0, fp_q = 0;
     eval::MotionTruth::KeypointTruth labels;
     if (truth && filter) {
-      labels = truth->classify_keypoints(t, filter->last_keypoints(), 4);
+      labels = truth->classify_keypoints(t, filter->last_keypoints(), settings.orb.scale_factor);
       const std::vector<uint8_t>& moving = labels.on_moving;
-      frame_score.add(filter->last_keep(), moving);
-      // Where the false rejections come from: Z (boxes) or Q (flow test);
-      // and how many touch a moving object's outline (a FAST corner there is
-      // formed by the mover, though its centre pixel is background).
+      frame_score.add(filter->last_keep(), moving, labels.boundary);
+      // Where the false rejections come from: Z (boxes) or Q (flow test).
       for (size_t k = 0; k < moving.size(); ++k) {
         if (filter->last_keep()[k] || moving[k]) continue;
         (filter->last_sets()[k] == slam::PointSet::kZ ? fp_z : fp_q)++;
-        summary.false_positive_near_moving += labels.near_moving[k];
       }
-      summary.score.true_positive += frame_score.true_positive;
-      summary.score.false_positive += frame_score.false_positive;
-      summary.score.false_negative += frame_score.false_negative;
-      summary.score.true_negative += frame_score.true_negative;
+      summary.score.add(frame_score);
+    }
+    if (overlays && i % o.overlays_every == 0) {
+      char name[32];
+      std::snprintf(name, sizeof(name), "frames/%06zu.png", i);
+      const std::vector<unsigned char> png = encode_png(
+          draw_rejection_overlay(bgr, *filter, truth ? &labels : nullptr), PngKind::kColor);
+      std::ofstream file((fs::path(overlays->path()) / name).string(), std::ios::binary);
+      file.write(reinterpret_cast<const char*>(png.data()),
+                 static_cast<std::streamsize>(png.size()));
+      if (!file) fail(o.overlays, std::string("cannot write ") + name);
+      char row[96];
+      std::snprintf(row, sizeof(row), "%zu %.6f %s\n", i, t, name);
+      *overlay_index << row;
     }
     if (keypoint_rows)
       write_keypoint_rows(keypoint_rows->stream(), i, t, *filter, depth, truth ? &labels : nullptr);
@@ -298,6 +367,11 @@ RunSummary run_sequence(const RunOptions& o) {
   summary.ba_ms_total = system.mapping_stats().ba_ms;
   if (stats) stats->commit();
   if (keypoint_rows) keypoint_rows->commit();
+  if (overlays) {
+    overlay_index->close();
+    if (!*overlay_index) fail(o.overlays, "cannot write index.txt");
+    overlays->commit();
+  }
   return summary;
 }
 

@@ -19,7 +19,7 @@ namespace depot::runner {
 struct RunOptions {
   std::string dataset;
   std::string settings;      // optional settings YAML
-  std::string mode = "orb";  // orb | orb+yolo | orb+lk | full
+  std::string mode = "orb";  // orb | orb+yolo | orb+lk | full | masked
   std::string detector =
       "";  // sim | darknet | xl | fastestdet | yolov5 | file ("" = sim on simulated data)
   std::string detector_config;                   // YAML for dnn detectors / the simulated detector
@@ -30,15 +30,27 @@ struct RunOptions {
   std::optional<size_t> frames;
   bool sync = false;
   bool quiet = false;
-  std::string stats_csv;                 // per-frame statistics
-  std::string keypoints_csv;             // per-keypoint sets, decisions, depth and truth
+  std::string stats_csv;      // per-frame statistics
+  std::string keypoints_csv;  // per-keypoint sets, decisions, depth and truth
+  std::string overlays;       // folder of per-frame rejection pictures (rejection_overlay.h)
+  size_t overlays_every = 1;  // a picture of every n-th frame
   float background_depth_margin = 0.0f;  // our extension of `full` (0 = paper)
   bool ego_motion_flow = false;          // our extension: flow test against camera motion
   bool test_static_points = false;       // our extension: flow test on P too
+  // masked mode: person masks from depth, a segmenter, or both; the segmenter YAML
+  // (default scenes/segmenters/selfie.yaml when the source needs one).
+  std::string person_mask = "depth";
+  std::string segmenter;
+  slam::ObjectMaskParams mask;      // masked: depth segmentation
+  float mask_reach = 1.0f;          // masked: RejectionParams::mask_reach
+  slam::BoxTrackerParams tracking;  // masked: missed-detection recovery
 };
 
 // Sets one rejection option by name, as a sweep's "rejection.KEY=VALUE":
-// background_margin (m), ego_flow (bool), test_static (bool). Throws
+// background_margin (m), ego_flow (bool), test_static (bool), person_mask
+// (depth | segmentation | both), and for masked mask.grow, mask.extent (m),
+// mask.edge_step (m), mask.edge_step_per_m, mask.stride (px), mask.reach,
+// tracking.max_missed (frames), tracking.min_iou. Throws
 // Error("<where>: ...") for an unknown key or a bad value.
 void apply_rejection_setting(RunOptions& options, const YamlOverride& setting,
                              const std::string& where);
@@ -53,8 +65,7 @@ struct RunSummary {
   std::vector<StampedPose> trajectory;
   std::vector<StampedPose> keyframes_trajectory;
   bool scored = false;
-  eval::RejectionScore score;
-  long false_positive_near_moving = 0;  // of score.false_positive: within 4 px of a mover
+  eval::RejectionScore score;  // with the boundary class (MotionTruth)
   std::string settings_source;
   std::string detector_name;
 };
@@ -78,14 +89,17 @@ slam::SimDetectorConfig sim_detector_config(const RunOptions& options);
 // bad configuration.
 std::unique_ptr<slam::Detector> make_detector(const RunOptions& options, const std::string& type);
 
-// The detector and the rejection filter of a run (both empty for `orb`), the
+// The detector, the person segmenter (masked mode with a segmentation
+// source) and the rejection filter of a run (all empty for `orb`), the
 // a-priori class table checked against the detector's classes. The detector
 // defaults to `sim` on simulated datasets and `darknet` otherwise.
+// `scale_factor`: the ORB pyramid's (settings.orb.scale_factor).
 struct RejectionSetup {
   std::unique_ptr<slam::Detector> detector;
+  std::unique_ptr<slam::PersonSegmenter> segmenter;
   std::unique_ptr<slam::RejectionFilter> filter;
 };
-RejectionSetup make_rejection(const RunOptions& options);
+RejectionSetup make_rejection(const RunOptions& options, float scale_factor = 1.2f);
 
 RunSummary run_sequence(const RunOptions& options);
 

@@ -1,0 +1,61 @@
+#pragma once
+// Missed-detection recovery: boxes tracked from frame to frame, so that an
+// object the detector misses for a few frames is still rejected. Each track
+// keeps its box and the box's velocity (image px per frame, smoothed over
+// detections: the object's and the camera's motion together); a detection
+// updates the track it overlaps most (greedy by IoU, same class), a track
+// without one is carried on by its velocity for at most `max_missed` frames
+// and then dropped. The caller may re-centre a carried box on what it finds
+// there (correct(): e.g. the object's depth mask).
+//
+// Owned by one thread (the tracking thread's rejection filter).
+#include <vector>
+
+#include "slam/detect/detection.h"
+
+namespace depot::slam {
+
+struct BoxTrackerParams {
+  int max_missed = 5;               // frames a track lives without a detection
+  float min_iou = 0.2f;             // a detection continues a track from this overlap
+  float velocity_smoothing = 0.5f;  // weight of the newest box motion in the velocity
+};
+
+struct TrackedBox {
+  Detection detection;  // the detection, or the track's prediction when missed > 0
+  int track_id = 0;
+  int missed = 0;  // frames since the track's last detection (0 = detected now)
+};
+
+class BoxTracker {
+ public:
+  explicit BoxTracker(const BoxTrackerParams& params = {}) : params_(params) {}
+
+  // Advances every track one frame and matches this frame's detections to
+  // them. Returns each detection (missed = 0) followed by the predicted box
+  // of each track the detector missed (missed = 1..max_missed).
+  std::vector<TrackedBox> update(const std::vector<Detection>& detections);
+  // Replaces a carried track's box (the one update() just returned, same
+  // track_id) by a measured one; its velocity is kept.
+  void correct(int track_id, const cv::Rect2f& box);
+
+  size_t tracks() const { return tracks_.size(); }
+
+ private:
+  struct Track {
+    int id;
+    Detection detection;         // the current box (detected or carried)
+    cv::Rect2f last_detected;    // the box of the last detection
+    cv::Point2f velocity{0, 0};  // of the box centre, px per frame
+    cv::Size2f size_velocity{0, 0};
+    int missed = 0;
+    int detected = 0;  // detections so far
+  };
+  BoxTrackerParams params_;
+  std::vector<Track> tracks_;
+  int next_id_ = 1;
+};
+
+float box_iou(const cv::Rect2f& a, const cv::Rect2f& b);
+
+}  // namespace depot::slam

@@ -1,0 +1,73 @@
+// Missed-detection recovery: a box missed for up to max_missed frames is
+// carried by its velocity and then dropped; a re-detection continues its track.
+#include <gtest/gtest.h>
+
+#include "slam/reject/box_tracker.h"
+
+namespace depot::slam {
+namespace {
+
+Detection person_at(float x) {
+  Detection d;
+  d.class_name = "person";
+  d.confidence = 0.8f;
+  d.box = cv::Rect2f(x, 50, 60, 150);
+  return d;
+}
+
+TEST(BoxTracker, BridgesAMissForKFramesThenDrops) {
+  BoxTrackerParams params;
+  params.max_missed = 3;
+  BoxTracker tracker(params);
+  int id = 0;
+  for (int f = 0; f < 4; ++f) {  // walking right at 8 px per frame
+    const auto boxes = tracker.update({person_at(100 + 8.0f * f)});
+    ASSERT_EQ(boxes.size(), 1u);
+    EXPECT_EQ(boxes[0].missed, 0);
+    if (f == 0) id = boxes[0].track_id;
+    EXPECT_EQ(boxes[0].track_id, id);
+  }
+  for (int f = 4; f < 7; ++f) {  // missed: carried where the person would be
+    const auto boxes = tracker.update({});
+    ASSERT_EQ(boxes.size(), 1u) << "frame " << f;
+    EXPECT_EQ(boxes[0].track_id, id);
+    EXPECT_EQ(boxes[0].missed, f - 3);
+    EXPECT_NEAR(boxes[0].detection.box.x, 100 + 8.0f * f, 0.5f);
+    EXPECT_EQ(boxes[0].detection.class_name, "person");
+  }
+  EXPECT_TRUE(tracker.update({}).empty());  // the 4th miss: dropped
+  EXPECT_EQ(tracker.tracks(), 0u);
+}
+
+TEST(BoxTracker, RedetectionContinuesTheTrack) {
+  BoxTracker tracker;
+  const int id = tracker.update({person_at(100)})[0].track_id;
+  tracker.update({person_at(110)});
+  tracker.update({});  // one miss
+  const auto boxes = tracker.update({person_at(130)});
+  ASSERT_EQ(boxes.size(), 1u);
+  EXPECT_EQ(boxes[0].track_id, id);
+  EXPECT_EQ(boxes[0].missed, 0);
+  // A detection of another class far away starts a new track; the person's
+  // track is carried beside it.
+  Detection dog = person_at(400);
+  dog.class_name = "dog";
+  const auto two = tracker.update({dog});
+  ASSERT_EQ(two.size(), 2u);
+  EXPECT_NE(two[0].track_id, id);
+  EXPECT_EQ(two[1].track_id, id);
+  EXPECT_EQ(two[1].missed, 1);
+}
+
+TEST(BoxTracker, CorrectionMovesACarriedBox) {
+  BoxTracker tracker;
+  const int id = tracker.update({person_at(100)})[0].track_id;
+  tracker.update({});
+  tracker.correct(id, cv::Rect2f(90, 50, 60, 150));
+  const auto boxes = tracker.update({});
+  ASSERT_EQ(boxes.size(), 1u);
+  EXPECT_FLOAT_EQ(boxes[0].detection.box.x, 90);  // no velocity yet: stays where corrected
+}
+
+}  // namespace
+}  // namespace depot::slam

@@ -1,0 +1,166 @@
+#include "slam/reject/object_mask.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+
+#include <opencv2/imgproc.hpp>
+
+namespace depot::slam {
+
+const int kFastCircle[16][2] = {{0, 3},  {1, 3},  {2, 2},  {3, 1},   {3, 0},   {3, -1},
+                                {2, -2}, {1, -3}, {0, -3}, {-1, -3}, {-2, -2}, {-3, -1},
+                                {-3, 0}, {-3, 1}, {-2, 2}, {-1, 3}};
+
+bool ObjectMask::on_object(int x, int y) const {
+  if (!valid() || !region.contains(cv::Point(x, y))) return false;
+  return mask.at<uint8_t>(y - region.y, x - region.x) != 0;
+}
+
+bool ObjectMask::touches(const cv::KeyPoint& kp, float scale_factor, float reach) const {
+  if (!valid()) return false;
+  if (on_object(static_cast<int>(std::lround(kp.pt.x)), static_cast<int>(std::lround(kp.pt.y))))
+    return true;
+  if (reach <= 0) return false;
+  const float scale = reach * std::pow(scale_factor, static_cast<float>(std::max(0, kp.octave)));
+  for (const auto& d : kFastCircle)
+    if (on_object(static_cast<int>(std::lround(kp.pt.x + scale * d[0])),
+                  static_cast<int>(std::lround(kp.pt.y + scale * d[1]))))
+      return true;
+  return false;
+}
+
+cv::Rect2f ObjectMask::bounds() const {
+  if (!valid()) return {};
+  const cv::Rect r = cv::boundingRect(mask);
+  return {static_cast<float>(r.x + region.x), static_cast<float>(r.y + region.y),
+          static_cast<float>(r.width), static_cast<float>(r.height)};
+}
+
+namespace {
+
+// The object's depth: the nearest strong peak of the box's depth histogram
+// (a detected object stands in front of what its box also holds). Each bin
+// is scored by the pixels within half the object's thickness of it; the
+// object's peak is the nearest local maximum scoring at least
+// `peak_share` of the best one. Returns the median depth of that window, or
+// 0 when fewer than `min_pixels` of the box have depth.
+float object_depth(const cv::Mat& depth, const cv::Rect& box, const ObjectMaskParams& p) {
+  std::vector<float> values;
+  for (int y = box.y; y < box.y + box.height; y += p.stride)
+    for (int x = box.x; x < box.x + box.width; x += p.stride) {
+      const float d = depth.at<float>(y, x);
+      if (d > 0 && std::isfinite(d)) values.push_back(d);
+    }
+  if (static_cast<int>(values.size()) < p.min_seed_pixels) return 0;
+  const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+  const int bins = std::min(4000, static_cast<int>((*hi - *lo) / p.bin_m) + 1);
+  std::vector<int> hist(bins, 0);
+  for (float d : values) hist[std::min(bins - 1, static_cast<int>((d - *lo) / p.bin_m))]++;
+  const int half = std::max(1, static_cast<int>(std::lround(p.seed_band_m / p.bin_m)));
+  std::vector<int> prefix(bins + 1, 0);
+  for (int b = 0; b < bins; ++b) prefix[b + 1] = prefix[b] + hist[b];
+  auto score = [&](int b) {
+    return prefix[std::min(bins, b + half + 1)] - prefix[std::max(0, b - half)];
+  };
+  int best = 0;
+  for (int b = 0; b < bins; ++b) best = std::max(best, score(b));
+  int peak = 0;
+  for (int b = 0; b < bins; ++b) {
+    if (score(b) < p.peak_share * best) continue;
+    peak = b;
+    while (peak + 1 < bins && score(peak + 1) >= score(peak)) ++peak;  // climb to its top
+    break;
+  }
+  const float w_lo = *lo + (peak - half) * p.bin_m, w_hi = *lo + (peak + half + 1) * p.bin_m;
+  std::vector<float> window;
+  for (float d : values)
+    if (d >= w_lo && d < w_hi) window.push_back(d);
+  std::nth_element(window.begin(), window.begin() + window.size() / 2, window.end());
+  return window[window.size() / 2];
+}
+
+}  // namespace
+
+cv::Rect search_region(const cv::Rect2f& box, cv::Size image, float grow) {
+  const float gx = grow * box.width, gy = grow * box.height;
+  return cv::Rect(cv::Point(static_cast<int>(std::floor(box.x - gx)),
+                            static_cast<int>(std::floor(box.y - gy))),
+                  cv::Point(static_cast<int>(std::ceil(box.x + box.width + gx)),
+                            static_cast<int>(std::ceil(box.y + box.height + gy)))) &
+         cv::Rect(cv::Point(0, 0), image);
+}
+
+ObjectMask with_segmentation(const ObjectMask& from_depth, const cv::Mat& segmentation,
+                             const cv::Rect2f& box, const ObjectMaskParams& p, bool union_) {
+  ObjectMask out;
+  out.depth = from_depth.depth;
+  out.region = search_region(box, segmentation.size(), p.grow);
+  if (out.region.empty()) return out;
+  out.mask = segmentation(out.region).clone();
+  if (union_ && from_depth.valid()) {
+    const cv::Rect common = out.region & from_depth.region;
+    cv::Mat dst = out.mask(common - out.region.tl());
+    cv::bitwise_or(dst, from_depth.mask(common - from_depth.region.tl()), dst);
+  }
+  if (cv::countNonZero(out.mask) == 0) out.mask.release();
+  return out;
+}
+
+ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box, const ObjectMaskParams& p) {
+  ObjectMask out;
+  const cv::Rect image(0, 0, depth.cols, depth.rows);
+  out.region = search_region(box, depth.size(), p.grow);
+  const cv::Rect inner = search_region(box, depth.size(), 0.0f);
+  if (out.region.empty() || inner.empty()) return out;
+  const float mode = object_depth(depth, inner, p);
+  if (mode <= 0) return out;
+
+  // Region growing on the stride grid of the search region.
+  const int s = std::max(1, p.stride);
+  const int gw = (out.region.width + s - 1) / s, gh = (out.region.height + s - 1) / s;
+  cv::Mat grid(gh, gw, CV_8U, cv::Scalar(0));
+  auto depth_at = [&](int gx_, int gy_) {
+    return depth.at<float>(out.region.y + gy_ * s, out.region.x + gx_ * s);
+  };
+  auto in_extent = [&](float d) { return d > 0 && std::fabs(d - mode) <= p.extent_m; };
+  std::deque<cv::Point> queue;
+  int seeds = 0;
+  for (int y = 0; y < gh; ++y)
+    for (int x = 0; x < gw; ++x) {
+      const cv::Point pixel(out.region.x + x * s, out.region.y + y * s);
+      if (!inner.contains(pixel)) continue;
+      const float d = depth_at(x, y);
+      if (d > 0 && std::fabs(d - mode) <= p.seed_band_m) {
+        grid.at<uint8_t>(y, x) = 255;
+        queue.emplace_back(x, y);
+        ++seeds;
+      }
+    }
+  if (seeds < p.min_seed_pixels / (s * s) + 1) return out;
+  static const int kSteps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+  while (!queue.empty()) {
+    const cv::Point c = queue.front();
+    queue.pop_front();
+    const float dc = depth_at(c.x, c.y);
+    const float max_step = (p.edge_step_m + p.edge_step_per_m * dc) * s;
+    for (const auto& st : kSteps) {
+      const int nx = c.x + st[0], ny = c.y + st[1];
+      if (nx < 0 || ny < 0 || nx >= gw || ny >= gh || grid.at<uint8_t>(ny, nx)) continue;
+      const float dn = depth_at(nx, ny);
+      if (!in_extent(dn) || std::fabs(dn - dc) > max_step) continue;
+      grid.at<uint8_t>(ny, nx) = 255;
+      queue.emplace_back(nx, ny);
+    }
+  }
+  // Close pinholes (sensor noise, missing depth inside the object), then
+  // back to image pixels.
+  cv::morphologyEx(grid, grid, cv::MORPH_CLOSE,
+                   cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3)));
+  cv::resize(grid, out.mask, cv::Size(gw * s, gh * s), 0, 0, cv::INTER_NEAREST);
+  out.mask = out.mask(cv::Rect(0, 0, out.region.width, out.region.height)).clone();
+  out.depth = mode;
+  return out;
+}
+
+}  // namespace depot::slam

@@ -1,0 +1,60 @@
+#pragma once
+// An object's pixels inside its detection box, segmented from depth: the
+// box's object is the nearest strong peak of the box's depth histogram (a
+// detected object stands in front of what else its box holds); the box's
+// pixels at that depth seed a region grown over neighbouring pixels whose
+// depth changes smoothly (a depth edge stops it) and stays within the
+// object's depth extent. Pixels of the box at other depths are the background seen around
+// the object; pixels without depth are undecided. Boxes from a detector are
+// jittered and scaled, so the search region is the box grown on each side.
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace depot::slam {
+
+struct ObjectMaskParams {
+  float grow = 0.15f;         // the search region: the box grown by this share of its size per side
+  float bin_m = 0.05f;        // depth histogram bin for the object's depth
+  float seed_band_m = 0.25f;  // half an object's thickness: peak window, and seeds' distance to it
+  float peak_share = 0.5f;    // the nearest peak holding this share of the strongest one
+  float extent_m = 0.6f;      // the object reaches this far in depth from its mode
+  float edge_step_m = 0.04f;  // a depth edge: neighbours further apart than
+  float edge_step_per_m = 0.03f;  //   edge_step_m + edge_step_per_m * depth (m)
+  int stride = 1;                 // segment on every stride-th pixel (then upsampled)
+  int min_seed_pixels = 12;       // fewer seeds at the mode: no mask (object without depth)
+};
+
+struct ObjectMask {
+  cv::Rect region;  // the image pixels `mask` covers (the grown box, clipped)
+  cv::Mat mask;     // CV_8U of region.size(), 255 = on the object
+  float depth = 0;  // the object's depth mode (m); 0 = none found
+  bool valid() const { return !mask.empty(); }
+  // The image pixel lies on the object.
+  bool on_object(int x, int y) const;
+  // A pixel of the object lies on the keypoint's centre or on its FAST
+  // circle (radius 3 px at its pyramid level: 3 * scale_factor^octave),
+  // the circle's radius scaled by `reach` (0 = the centre pixel only).
+  bool touches(const cv::KeyPoint& keypoint, float scale_factor, float reach = 1.0f) const;
+  // The bounding box of the object's pixels (empty when none).
+  cv::Rect2f bounds() const;
+};
+
+// depth: CV_32F metres, 0 = none.
+ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box,
+                          const ObjectMaskParams& params = {});
+
+// A box's search region: grown by `grow` of its size per side, clipped to
+// the image.
+cv::Rect search_region(const cv::Rect2f& box, cv::Size image, float grow);
+
+// A person's mask from a segmenter's (CV_8U, image-sized, non-zero =
+// person) inside the box's search region: the segmenter's pixels alone, or
+// (union = true) those and the depth mask's together.
+ObjectMask with_segmentation(const ObjectMask& from_depth, const cv::Mat& segmentation,
+                             const cv::Rect2f& box, const ObjectMaskParams& params, bool union_);
+
+// FAST-9's Bresenham circle of radius 3: 16 (dx, dy) offsets.
+extern const int kFastCircle[16][2];
+
+}  // namespace depot::slam

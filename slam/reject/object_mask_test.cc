@@ -1,0 +1,86 @@
+// Depth segmentation inside a box on synthetic depth: a near object in front
+// of far background splits right, the FAST-circle contact rule, and an
+// object without depth gives no mask.
+#include <gtest/gtest.h>
+
+#include "slam/reject/object_mask.h"
+
+namespace depot::slam {
+namespace {
+
+// A wall at 4 m; a "person" (torso 60x160 px at 1.5-1.66 m, leaning) with
+// an arm reaching 40 px out towards the camera (1.55 -> 1.39 m, smoothly
+// from the shoulder), and a shelf edge inside the box at 3 m.
+cv::Mat scene_depth() {
+  cv::Mat depth(240, 320, CV_32F, cv::Scalar(4.0f));
+  for (int y = 40; y < 200; ++y)
+    for (int x = 130; x < 190; ++x) depth.at<float>(y, x) = 1.5f + 0.001f * (y - 40);
+  for (int y = 90; y < 100; ++y)
+    for (int x = 90; x < 130; ++x) depth.at<float>(y, x) = 1.55f - 0.004f * (130 - x);
+  for (int y = 150; y < 160; ++y)
+    for (int x = 60; x < 100; ++x) depth.at<float>(y, x) = 3.0f;
+  return depth;
+}
+
+TEST(ObjectMask, NearObjectSplitsFromFarBackground) {
+  const cv::Mat depth = scene_depth();
+  // A loose detector box, wider than the person, holding wall and shelf too.
+  const ObjectMask m = segment_object(depth, cv::Rect2f(70, 30, 140, 180));
+  ASSERT_TRUE(m.valid());
+  EXPECT_NEAR(m.depth, 1.55f, 0.1f);
+  EXPECT_TRUE(m.on_object(160, 100));   // torso
+  EXPECT_TRUE(m.on_object(135, 195));   // torso's corner
+  EXPECT_TRUE(m.on_object(95, 95));     // the arm, 0.15 m nearer than the torso
+  EXPECT_FALSE(m.on_object(200, 100));  // wall inside the box
+  EXPECT_FALSE(m.on_object(80, 155));   // shelf inside the box
+  EXPECT_FALSE(m.on_object(160, 20));   // wall above the box
+  // Every torso pixel is on the mask, no wall pixel is.
+  int torso = 0, wall = 0;
+  for (int y = 30; y < 210; ++y)
+    for (int x = 70; x < 210; ++x) {
+      const bool on = m.on_object(x, y);
+      const bool truth =
+          (y >= 40 && y < 200 && x >= 130 && x < 190) || (y >= 90 && y < 100 && x >= 90 && x < 130);
+      torso += truth && on;
+      wall += !truth && on;
+    }
+  EXPECT_EQ(torso, 160 * 60 + 10 * 40);
+  EXPECT_EQ(wall, 0);
+  const cv::Rect2f b = m.bounds();
+  EXPECT_FLOAT_EQ(b.x, 90);
+  EXPECT_FLOAT_EQ(b.width, 100);
+}
+
+TEST(ObjectMask, FindsTheObjectWhenTheBoxCentreIsBackground) {
+  // A person cut by the image's edge: the box reaches past it over the wall.
+  cv::Mat depth(240, 320, CV_32F, cv::Scalar(3.5f));
+  for (int y = 20; y < 240; ++y)
+    for (int x = 280; x < 320; ++x) depth.at<float>(y, x) = 1.2f;
+  const ObjectMask m = segment_object(depth, cv::Rect2f(200, 20, 120, 220));
+  ASSERT_TRUE(m.valid());
+  EXPECT_NEAR(m.depth, 1.2f, 0.05f);
+  EXPECT_TRUE(m.on_object(300, 100));
+  EXPECT_FALSE(m.on_object(240, 100));
+}
+
+TEST(ObjectMask, FastCircleContact) {
+  const ObjectMask m = segment_object(scene_depth(), cv::Rect2f(70, 30, 140, 180));
+  ASSERT_TRUE(m.valid());
+  // Right edge of the torso at x = 189.
+  EXPECT_TRUE(m.touches(cv::KeyPoint(188, 120, 7), 1.2f));   // on it
+  EXPECT_TRUE(m.touches(cv::KeyPoint(192, 120, 7), 1.2f));   // 3 px out: the circle reaches
+  EXPECT_FALSE(m.touches(cv::KeyPoint(194, 120, 7), 1.2f));  // 5 px out at level 0: no
+  cv::KeyPoint coarse(194, 120, 7);
+  coarse.octave = 3;  // radius 3 * 1.2^3 = 5.2 px
+  EXPECT_TRUE(m.touches(coarse, 1.2f));
+}
+
+TEST(ObjectMask, NoDepthNoMask) {
+  cv::Mat depth(240, 320, CV_32F, cv::Scalar(0.0f));
+  EXPECT_FALSE(segment_object(depth, cv::Rect2f(100, 50, 80, 150)).valid());
+  // A box entirely outside the image.
+  EXPECT_FALSE(segment_object(scene_depth(), cv::Rect2f(400, 50, 80, 150)).valid());
+}
+
+}  // namespace
+}  // namespace depot::slam
