@@ -4,6 +4,7 @@
 #include <cmath>
 #include <deque>
 
+#include <Eigen/Geometry>
 #include <opencv2/imgproc.hpp>
 
 namespace depot::slam {
@@ -80,6 +81,61 @@ float object_depth(const cv::Mat& depth, const cv::Rect& box, const ObjectMaskPa
   return window[window.size() / 2];
 }
 
+// The support plane of the region (see the header), as a mask of its
+// pixels on the stride grid (255 = on the plane); empty when there is none.
+cv::Mat support_plane(const cv::Mat& depth, const cv::Rect& region, int s, int gw, int gh,
+                      float mode, const PinholeCamera& camera, const ObjectMaskParams& p) {
+  struct Sample {
+    int gx, gy;
+    Eigen::Vector3d x;
+  };
+  std::vector<Sample> samples;
+  const int step = std::max(1, 4 / s);  // plane fitting on every 4th pixel
+  for (int gy = 0; gy < gh; gy += step)
+    for (int gx = 0; gx < gw; gx += step) {
+      const int u = region.x + gx * s, v = region.y + gy * s;
+      const float d = depth.at<float>(v, u);
+      if (d > 0 && std::isfinite(d)) samples.push_back({gx, gy, camera.unproject(u, v, d)});
+    }
+  if (samples.size() < 50) return {};
+  cv::RNG rng(0x5eed);  // fixed: the same frame segments the same way
+  auto tolerance = [&](double z) { return p.plane_tolerance_m + p.plane_tolerance_per_m * z; };
+  Eigen::Vector3d best_n(0, 0, 0);
+  double best_c = 0;
+  size_t best_inliers = 0;
+  for (int it = 0; it < p.plane_iterations; ++it) {
+    const auto& a = samples[rng.uniform(0, static_cast<int>(samples.size()))].x;
+    const auto& b = samples[rng.uniform(0, static_cast<int>(samples.size()))].x;
+    const auto& c = samples[rng.uniform(0, static_cast<int>(samples.size()))].x;
+    Eigen::Vector3d n = (b - a).cross(c - a);
+    if (n.norm() < 1e-9) continue;
+    n.normalize();
+    const double off = -n.dot(a);
+    size_t inliers = 0;
+    for (const Sample& q : samples) inliers += std::fabs(n.dot(q.x) + off) <= tolerance(q.x.z());
+    if (inliers > best_inliers) best_inliers = inliers, best_n = n, best_c = off;
+  }
+  if (best_inliers < p.plane_min_share * samples.size()) return {};
+  // Mark the plane's pixels; count how many of the object's seeds it takes.
+  cv::Mat plane(gh, gw, CV_8U, cv::Scalar(0));
+  size_t seeds = 0, seeds_on_plane = 0;
+  for (int gy = 0; gy < gh; ++gy)
+    for (int gx = 0; gx < gw; ++gx) {
+      const int u = region.x + gx * s, v = region.y + gy * s;
+      const float d = depth.at<float>(v, u);
+      if (!(d > 0)) continue;
+      const Eigen::Vector3d x = camera.unproject(u, v, d);
+      const bool on = std::fabs(best_n.dot(x) + best_c) <= tolerance(d);
+      plane.at<uint8_t>(gy, gx) = on ? 255 : 0;
+      if (std::fabs(d - mode) <= p.seed_band_m) {
+        ++seeds;
+        seeds_on_plane += on;
+      }
+    }
+  if (seeds == 0 || seeds_on_plane > p.plane_max_seed_share * seeds) return {};
+  return plane;
+}
+
 }  // namespace
 
 cv::Rect search_region(const cv::Rect2f& box, cv::Size image, float grow) {
@@ -107,7 +163,8 @@ ObjectMask with_segmentation(const ObjectMask& from_depth, const cv::Mat& segmen
   return out;
 }
 
-ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box, const ObjectMaskParams& p) {
+ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box, const ObjectMaskParams& p,
+                          const PinholeCamera* camera) {
   ObjectMask out;
   const cv::Rect image(0, 0, depth.cols, depth.rows);
   out.region = search_region(box, depth.size(), p.grow);
@@ -124,6 +181,9 @@ ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box, const Obj
     return depth.at<float>(out.region.y + gy_ * s, out.region.x + gx_ * s);
   };
   auto in_extent = [&](float d) { return d > 0 && std::fabs(d - mode) <= p.extent_m; };
+  const cv::Mat plane =
+      camera ? support_plane(depth, out.region, s, gw, gh, mode, *camera, p) : cv::Mat();
+  auto on_plane = [&](int x, int y) { return !plane.empty() && plane.at<uint8_t>(y, x); };
   std::deque<cv::Point> queue;
   int seeds = 0;
   for (int y = 0; y < gh; ++y)
@@ -131,7 +191,7 @@ ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box, const Obj
       const cv::Point pixel(out.region.x + x * s, out.region.y + y * s);
       if (!inner.contains(pixel)) continue;
       const float d = depth_at(x, y);
-      if (d > 0 && std::fabs(d - mode) <= p.seed_band_m) {
+      if (d > 0 && std::fabs(d - mode) <= p.seed_band_m && !on_plane(x, y)) {
         grid.at<uint8_t>(y, x) = 255;
         queue.emplace_back(x, y);
         ++seeds;
@@ -148,7 +208,7 @@ ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box, const Obj
       const int nx = c.x + st[0], ny = c.y + st[1];
       if (nx < 0 || ny < 0 || nx >= gw || ny >= gh || grid.at<uint8_t>(ny, nx)) continue;
       const float dn = depth_at(nx, ny);
-      if (!in_extent(dn) || std::fabs(dn - dc) > max_step) continue;
+      if (!in_extent(dn) || std::fabs(dn - dc) > max_step || on_plane(nx, ny)) continue;
       grid.at<uint8_t>(ny, nx) = 255;
       queue.emplace_back(nx, ny);
     }

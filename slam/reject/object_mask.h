@@ -4,12 +4,17 @@
 // detected object stands in front of what else its box holds); the box's
 // pixels at that depth seed a region grown over neighbouring pixels whose
 // depth changes smoothly (a depth edge stops it) and stays within the
-// object's depth extent. Pixels of the box at other depths are the background seen around
+// object's depth extent. The floor an object stands on meets it without a
+// depth edge, so with the camera's intrinsics the dominant plane of the
+// search region (RANSAC on its 3D points) is taken out of the region first,
+// when it is a support surface: large, but holding few of the object's seeds. Pixels of the box at other depths are the background seen around
 // the object; pixels without depth are undecided. Boxes from a detector are
 // jittered and scaled, so the search region is the box grown on each side.
 #include <vector>
 
 #include <opencv2/core.hpp>
+
+#include "slam/camera/pinhole_camera.h"
 
 namespace depot::slam {
 
@@ -23,6 +28,12 @@ struct ObjectMaskParams {
   float edge_step_per_m = 0.03f;  //   edge_step_m + edge_step_per_m * depth (m)
   int stride = 1;                 // segment on every stride-th pixel (then upsampled)
   int min_seed_pixels = 12;       // fewer seeds at the mode: no mask (object without depth)
+  // Support-plane removal (needs the camera):
+  float plane_tolerance_m = 0.02f;       // a pixel on the plane: this close, plus
+  float plane_tolerance_per_m = 0.01f;   //   this much per metre of depth
+  float plane_min_share = 0.15f;         // the plane holds at least this share of the region
+  float plane_max_seed_share = 0.25f;    // and at most this share of the object's seeds
+  int plane_iterations = 80;
 };
 
 struct ObjectMask {
@@ -40,9 +51,11 @@ struct ObjectMask {
   cv::Rect2f bounds() const;
 };
 
-// depth: CV_32F metres, 0 = none.
+// depth: CV_32F metres, 0 = none. `camera` (optional): the depth image's
+// intrinsics, for support-plane removal.
 ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box,
-                          const ObjectMaskParams& params = {});
+                          const ObjectMaskParams& params = {},
+                          const PinholeCamera* camera = nullptr);
 
 // A box's search region: grown by `grow` of its size per side, clipped to
 // the image.

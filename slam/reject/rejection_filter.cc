@@ -178,7 +178,8 @@ std::vector<PointSet> RejectionFilter::masked_sets(const FrameImages& images,
   const bool segment = segmenter_ && params_.person_mask != RejectionParams::PersonMask::kDepth;
   const cv::Mat* person = nullptr;
   for (TrackedBox& object : objects_) {
-    ObjectMask mask = segment_object(images.depth, object.detection.box, params_.mask);
+    ObjectMask mask =
+        segment_object(images.depth, object.detection.box, params_.mask, images.camera);
     stats_.masks += mask.valid();
     if (segment && object.detection.class_name == "person") {
       if (!person) {
