@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 
 #include <gtest/gtest.h>
@@ -148,6 +149,32 @@ TEST(CliSlam, WritesOneRowPerKeypointConsistentWithTheStatistics) {
   EXPECT_NE(orb.code, 0);
   EXPECT_NE(orb.output.find("has no effect in --mode orb"), std::string::npos) << orb.output;
   EXPECT_FALSE(fs::exists(none));
+}
+
+// The detection thread running ahead changes when detections are made, not
+// which: the simulated detector gives the same trajectory either way, also
+// with an emulated 60 Hz camera.
+TEST(CliSlam, RunAheadLeavesTheTrajectoryUnchanged) {
+  std::string d = render_small({"depot_walking_xyz", 20, 640, false});
+  auto run = [&](const std::string& options) {
+    const std::string out = temp_path("traj") + ".txt";
+    DepotResult r =
+        depot("slam run " + d + " -o " + out + " --mode full --mapping sync -q " + options);
+    EXPECT_EQ(r.code, 0) << r.output;
+    std::ifstream in(out);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string ahead = run(""), not_ahead = run("--no-run-ahead");
+  EXPECT_FALSE(ahead.empty());
+  EXPECT_EQ(ahead, not_ahead);
+  EXPECT_EQ(run("--rate 60"), ahead);
+  EXPECT_EQ(run("--rate 60 --no-run-ahead"), ahead);
+  // Only detector modes have a detection thread to run ahead.
+  DepotResult orb = depot("slam run " + d + " -o " + temp_path("t") + ".txt --mode orb+lk -q " +
+                          "--no-run-ahead");
+  EXPECT_NE(orb.code, 0);
+  EXPECT_NE(orb.output.find("--no-run-ahead: has no effect in --mode orb+lk"), std::string::npos)
+      << orb.output;
 }
 
 }  // namespace

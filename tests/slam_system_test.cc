@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/error.h"
 #include "eval/ate.h"
 #include "eval/matched_trajectories.h"
 #include "slam/io/settings.h"
@@ -88,6 +89,29 @@ TEST(SlamSystem, WalkingPeopleWithoutRejectionRunToTheEnd) {
   EXPECT_GT(run.ate_rmse, 0.0);
   std::printf("walking_xyz without rejection: ATE RMSE %.4f m, %d lost frames\n", run.ate_rmse,
               run.lost);
+}
+
+// Frames handed over ahead take the ids their track() calls assign; tracking
+// another frame than the one handed over for that id is an error.
+TEST(SlamSystem, FramesHandedOverAheadAreTrackedInTheirOrder) {
+  slam::SlamSettings settings;  // the TUM fr3 defaults
+  settings.threaded_mapping = false;
+  slam::System system(settings);
+  const cv::Mat bgr(settings.camera.height, settings.camera.width, CV_8UC3, cv::Scalar::all(128));
+  const cv::Mat depth(bgr.size(), CV_32F, cv::Scalar(0));
+  system.look_ahead(bgr, depth, 1.0);
+  system.look_ahead(bgr, depth, 2.0);
+  EXPECT_NO_THROW(system.track(bgr, depth, 1.0));
+  try {
+    system.track(bgr, depth, 3.0);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("frame 1: track() got timestamp 3.000000 but "
+                                         "look_ahead() handed over 2.000000"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(system.look_ahead(cv::Mat(4, 4, CV_8UC3), depth, 4.0), Error);
 }
 
 }  // namespace

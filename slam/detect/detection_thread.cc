@@ -1,11 +1,15 @@
 #include "slam/detect/detection_thread.h"
 
+#include <algorithm>
 #include <chrono>
+#include <string>
+
+#include "common/error.h"
 
 namespace depot::slam {
 
-DetectionThread::DetectionThread(Detector& detector)
-    : detector_(detector), thread_([this] { run(); }) {}
+DetectionThread::DetectionThread(Detector& detector, size_t max_jobs)
+    : detector_(detector), max_jobs_(std::max<size_t>(1, max_jobs)), thread_([this] { run(); }) {}
 
 DetectionThread::~DetectionThread() {
   {
@@ -16,59 +20,105 @@ DetectionThread::~DetectionThread() {
   thread_.join();
 }
 
+DetectionThread::Job* DetectionThread::find(long frame_index) {
+  for (Job& job : jobs_)
+    if (job.index == frame_index) return &job;
+  return nullptr;
+}
+
 void DetectionThread::submit(const cv::Mat& bgr, double timestamp, long frame_index) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  image_ = bgr;
-  timestamp_ = timestamp;
-  index_ = frame_index;
-  has_job_ = true;
-  done_ = false;
-  error_ = nullptr;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (find(frame_index)) return;
+    if (jobs_.size() >= max_jobs_)
+      fail("frame " + std::to_string(frame_index), "detection queue full (" +
+                                                       std::to_string(jobs_.size()) +
+                                                       " frames submitted and not waited for)");
+    Job job;
+    job.index = frame_index;
+    job.image = bgr;  // a header on the caller's pixels, not a copy
+    job.timestamp = timestamp;
+    jobs_.push_back(std::move(job));
+  }
   cv_.notify_all();
 }
 
-std::vector<Detection> DetectionThread::wait(double* waited_ms, double* detect_ms) {
+std::vector<Detection> DetectionThread::wait(long frame_index, double* waited_ms,
+                                             double* detect_ms) {
   const auto t0 = std::chrono::steady_clock::now();
   std::unique_lock<std::mutex> lock(mutex_);
-  cv_.wait(lock, [&] { return done_ || !has_job_; });
+  if (!find(frame_index))
+    fail("frame " + std::to_string(frame_index), "was not submitted for detection");
+  Job* job = nullptr;
+  cv_.wait(lock, [&] {
+    job = find(frame_index);
+    return !job || job->state == JobState::kDone;
+  });
+  if (!job) fail("frame " + std::to_string(frame_index), "was waited for twice at once");
   if (waited_ms)
     *waited_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  if (detect_ms) *detect_ms = detect_ms_;
-  if (error_) std::rethrow_exception(error_);
-  has_job_ = false;
-  return std::move(result_);
+  if (detect_ms) *detect_ms = job->detect_ms;
+  std::vector<Detection> result = std::move(job->result);
+  const std::exception_ptr error = job->error;
+  // Forget this frame and earlier ones never waited for (not the one running).
+  jobs_.erase(std::remove_if(jobs_.begin(), jobs_.end(),
+                             [&](const Job& j) {
+                               return j.index <= frame_index && j.state != JobState::kRunning;
+                             }),
+              jobs_.end());
+  lock.unlock();
+  if (error) std::rethrow_exception(error);
+  return result;
+}
+
+size_t DetectionThread::queued() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return jobs_.size();
 }
 
 void DetectionThread::run() {
   while (true) {
     cv::Mat image;
-    double t;
-    long index;
+    double timestamp = 0;
+    long index = 0;
     {
       std::unique_lock<std::mutex> lock(mutex_);
-      cv_.wait(lock, [&] { return stop_ || (has_job_ && !done_); });
+      Job* next = nullptr;
+      cv_.wait(lock, [&] {
+        next = nullptr;
+        for (Job& job : jobs_)
+          if (job.state == JobState::kQueued) {
+            next = &job;
+            break;
+          }
+        return stop_ || next;
+      });
       if (stop_) return;
-      image = image_;
-      t = timestamp_;
-      index = index_;
+      next->state = JobState::kRunning;
+      image = next->image;
+      timestamp = next->timestamp;
+      index = next->index;
     }
     std::vector<Detection> result;
     std::exception_ptr error;
     const auto t0 = std::chrono::steady_clock::now();
     try {
-      result = detector_.detect(image, t, index);
+      result = detector_.detect(image, timestamp, index);
     } catch (...) {
       error = std::current_exception();
     }
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    image.release();
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      result_ = std::move(result);
-      error_ = error;
-      detect_ms_ = ms;
-      done_ = true;
+      Job* job = find(index);  // a running job is never erased
+      job->image.release();
+      job->result = std::move(result);
+      job->error = error;
+      job->detect_ms = ms;
+      job->state = JobState::kDone;
     }
     cv_.notify_all();
   }

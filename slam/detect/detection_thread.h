@@ -1,8 +1,14 @@
 #pragma once
-// The paper's two-thread front end: a detector runs on each incoming frame
-// in its own thread while the tracker extracts ORB features, and hands its
-// boxes over for the same frame.
+// The paper's two-thread front end, run ahead: a detector runs in its own
+// thread on a small FIFO of frames, so the caller can submit frame k+1 while
+// it still tracks frame k and collect each frame's boxes by its index.
+//
+// Threads: the caller's thread calls submit() and wait(); the worker thread
+// runs the detector. All shared state (the job queue, results, errors, the
+// stop flag) is guarded by `mutex_`; the detector is used by the worker only.
 #include <condition_variable>
+#include <deque>
+#include <exception>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -13,31 +19,54 @@ namespace depot::slam {
 
 class DetectionThread {
  public:
-  explicit DetectionThread(Detector& detector);
-  ~DetectionThread();
+  // Submitting more than `max_jobs` frames that are not yet waited for is an
+  // error (the caller looks ahead too far or never waits).
+  explicit DetectionThread(Detector& detector, size_t max_jobs = 4);
+  ~DetectionThread();  // finishes the running job, drops the queued ones
   DetectionThread(const DetectionThread&) = delete;
   DetectionThread& operator=(const DetectionThread&) = delete;
 
-  // Starts detection on a frame (the image is shared, not copied: keep it
-  // unchanged until wait() returns).
+  // Queues detection of frame `frame_index`; jobs run in submission order.
+  // Submitting a frame that is already queued, running or done but not yet
+  // waited for does nothing. Lifetime: the image is shared, not copied (the
+  // job holds a cv::Mat header on the caller's pixels), so the caller must
+  // neither write into those pixels nor free them (for a Mat over external
+  // data) until wait() for this frame has returned. Throws depot::Error when
+  // `max_jobs` frames are already queued.
   void submit(const cv::Mat& bgr, double timestamp, long frame_index);
-  // The detections of the submitted frame. `waited_ms`: how long the caller
-  // blocked; `detect_ms`: the detector's own time. Rethrows detector errors.
-  std::vector<Detection> wait(double* waited_ms = nullptr, double* detect_ms = nullptr);
+  // The detections of frame `frame_index`, blocking until its job is done,
+  // and forgets that frame along with any earlier frames never waited for
+  // (queued ones are dropped unrun). `waited_ms`: how long the caller
+  // blocked; `detect_ms`: the detector's own time on this frame. Rethrows
+  // the detector's error for this frame; throws depot::Error for a frame
+  // that was not submitted.
+  std::vector<Detection> wait(long frame_index, double* waited_ms = nullptr,
+                              double* detect_ms = nullptr);
+
+  // Frames submitted and not yet waited for.
+  size_t queued() const;
 
  private:
+  enum class JobState { kQueued, kRunning, kDone };
+  struct Job {
+    long index = 0;
+    cv::Mat image;
+    double timestamp = 0;
+    JobState state = JobState::kQueued;
+    std::vector<Detection> result;
+    double detect_ms = 0;
+    std::exception_ptr error;
+  };
+  Job* find(long frame_index);  // needs mutex_
   void run();
-  Detector& detector_;
-  std::mutex mutex_;
+
+  Detector& detector_;  // worker thread only
+  const size_t max_jobs_;
+  mutable std::mutex mutex_;
   std::condition_variable cv_;
-  bool has_job_ = false, done_ = false, stop_ = false;
-  cv::Mat image_;
-  double timestamp_ = 0;
-  long index_ = 0;
-  std::vector<Detection> result_;
-  double detect_ms_ = 0;
-  std::exception_ptr error_;
-  std::thread thread_;
+  std::deque<Job> jobs_;  // submission order; frame indices unique
+  bool stop_ = false;
+  std::thread thread_;  // last: starts after the members above exist
 };
 
 }  // namespace depot::slam

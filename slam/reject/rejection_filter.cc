@@ -81,7 +81,11 @@ RejectionFilter::RejectionFilter(RejectionMode mode, AprioriClasses classes, Det
 }
 
 void RejectionFilter::begin_frame(const FrameImages& images) {
-  if (thread_) thread_->submit(images.bgr, images.timestamp, images.frame_id);
+  if (thread_) thread_->submit(images.bgr, images.timestamp, images.frame_id);  // no-op if ahead
+}
+
+void RejectionFilter::look_ahead(const FrameImages& next) {
+  if (thread_) thread_->submit(next.bgr, next.timestamp, next.frame_id);
 }
 
 void RejectionFilter::filter(const FrameImages& images, const std::vector<cv::KeyPoint>& keypoints,
@@ -90,7 +94,7 @@ void RejectionFilter::filter(const FrameImages& images, const std::vector<cv::Ke
   stats_.frame = images.frame_id;
   stats_.total = static_cast<int>(keypoints.size());
   detections_.clear();
-  if (thread_) detections_ = thread_->wait(&stats_.wait_ms, &stats_.detect_ms);
+  if (thread_) detections_ = thread_->wait(images.frame_id, &stats_.wait_ms, &stats_.detect_ms);
   const auto t0 = std::chrono::steady_clock::now();
   stats_.detections = static_cast<int>(detections_.size());
   keep.assign(keypoints.size(), 1);

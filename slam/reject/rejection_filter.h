@@ -99,6 +99,7 @@ class RejectionFilter : public KeypointFilter {
                   const RejectionParams& params = {});
 
   void begin_frame(const FrameImages& images) override;
+  void look_ahead(const FrameImages& next) override;  // starts the detector on `next`
   void filter(const FrameImages& images, const std::vector<cv::KeyPoint>& keypoints,
               std::vector<uint8_t>& keep) override;
 

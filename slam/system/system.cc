@@ -42,14 +42,35 @@ System::~System() {
   mapper_.stop();
 }
 
-TrackResult System::track(const cv::Mat& bgr, const cv::Mat& depth, double timestamp) {
+void System::check_images(const cv::Mat& bgr, const cv::Mat& depth, long frame_id) const {
   const PinholeCamera& cam = settings_.camera;
   if (bgr.type() != CV_8UC3 || bgr.cols != cam.width || bgr.rows != cam.height)
-    fail("frame " + std::to_string(next_frame_id_),
-         "colour image must be CV_8UC3 of the camera's size");
+    fail("frame " + std::to_string(frame_id), "colour image must be CV_8UC3 of the camera's size");
   if (depth.type() != CV_32F || depth.size() != bgr.size())
-    fail("frame " + std::to_string(next_frame_id_),
+    fail("frame " + std::to_string(frame_id),
          "depth must be CV_32F metres of the colour image's size");
+}
+
+void System::look_ahead(const cv::Mat& bgr, const cv::Mat& depth, double timestamp) {
+  const long id = next_frame_id_ + static_cast<long>(ahead_.size());
+  check_images(bgr, depth, id);
+  ahead_.push_back(timestamp);
+  const cv::Mat no_gray;  // made when the frame is tracked
+  if (filter_)
+    filter_->look_ahead(FrameImages{bgr, no_gray, depth, timestamp, id, &settings_.camera});
+}
+
+TrackResult System::track(const cv::Mat& bgr, const cv::Mat& depth, double timestamp) {
+  const PinholeCamera& cam = settings_.camera;
+  check_images(bgr, depth, next_frame_id_);
+  if (!ahead_.empty()) {
+    if (ahead_.front() != timestamp)
+      fail("frame " + std::to_string(next_frame_id_),
+           "track() got timestamp " + std::to_string(timestamp) + " but look_ahead() handed over " +
+               std::to_string(ahead_.front()) +
+               " for this frame (frames must be tracked in the order handed over)");
+    ahead_.pop_front();
+  }
   TrackResult result;
   auto t0 = std::chrono::steady_clock::now();
   cv::Mat gray;

@@ -2,6 +2,7 @@
 // The SLAM system: feed (rgb, depth, timestamp), get the camera pose and
 // tracking state. Owns the ORB extractor, the optional keypoint filter (the
 // dynamic-rejection seam), the tracker, the map and local mapping.
+#include <deque>
 #include <memory>
 #include <vector>
 
@@ -41,6 +42,15 @@ class System {
 
   // bgr: CV_8UC3; depth: CV_32F metres (0 = none), same size as the camera.
   TrackResult track(const cv::Mat& bgr, const cv::Mat& depth, double timestamp);
+  // Hands a frame over before its turn so the filter can start on it early
+  // (KeypointFilter::look_ahead; the rejection filter's detector runs on it
+  // while the frames before it are tracked). Frames are handed over in
+  // tracking order, starting with the next frame track() will get: each gets
+  // the id its track() call will assign. track() must then be given the same
+  // frames in that order (checked by timestamp; depot::Error otherwise). The
+  // images are shared, not copied: keep their pixels unchanged until the
+  // frame has been tracked. Does nothing else without a filter.
+  void look_ahead(const cv::Mat& bgr, const cv::Mat& depth, double timestamp);
   // Lets local mapping finish its queue (call before reading trajectories).
   void finish();
 
@@ -55,6 +65,8 @@ class System {
   int resets() const { return resets_; }
 
  private:
+  void check_images(const cv::Mat& bgr, const cv::Mat& depth, long frame_id) const;
+
   SlamSettings settings_;
   KeypointFilter* filter_;
   ScaleLevels levels_;
@@ -63,6 +75,9 @@ class System {
   LocalMapper mapper_;
   Tracker tracker_;
   long next_frame_id_ = 0;
+  // Timestamps of the frames handed over by look_ahead() and not yet
+  // tracked; the first has id next_frame_id_, the next +1, ...
+  std::deque<double> ahead_;
   int resets_ = 0;
 };
 

@@ -27,6 +27,12 @@ class KeypointFilter {
   // Called when a frame arrives, before ORB extraction: lets a filter start
   // work that runs in parallel with extraction (e.g. object detection).
   virtual void begin_frame(const FrameImages& images) { (void)images; }
+  // Called with a frame before its turn, possibly while earlier frames are
+  // still to be tracked (System::look_ahead): lets a filter start work early,
+  // e.g. detect frame k+1 while frame k is tracked. `next.gray` is empty;
+  // begin_frame() and filter() follow with the same frame_id when the frame
+  // is tracked. The images are the caller's, unchanged until then.
+  virtual void look_ahead(const FrameImages& next) { (void)next; }
   // Sets keep[i] = 1 for keypoints to use, 0 for rejected ones (keep has
   // keypoints.size() entries, all 1 on entry).
   virtual void filter(const FrameImages& images, const std::vector<cv::KeyPoint>& keypoints,

@@ -33,6 +33,8 @@ void check_options_used_by_mode(const std::string& mode, const CLI::App& cmd) {
       {"--detector-seed", detector},
       {"--detector-set", detector},
       {"--classes", detector},
+      {"--no-run-ahead", detector},
+      {"--rejection-set", m == slam::RejectionMode::kFull || m == slam::RejectionMode::kMasked},
       {"--keypoints", m != slam::RejectionMode::kOrb},
       {"--overlays", m != slam::RejectionMode::kOrb},
       {"--background-margin", m == slam::RejectionMode::kFull},
@@ -77,10 +79,16 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
       s.frames, s.lost, s.relocalized, a.options.mode.c_str(), s.keyframes, s.map_points,
       s.median_ms, s.p95_ms, s.extract_ms, s.track_ms);
   if (a.options.mode != "orb")
-    std::printf(", rejection %.1f incl. flow %.1f, waited %.1f for the %s detector taking %.1f",
-                s.filter_ms, s.flow_ms, s.wait_ms,
-                s.detector_name.empty() ? "(no)" : s.detector_name.c_str(), s.detect_ms);
+    std::printf(
+        ", rejection %.1f incl. flow %.1f, waited %.1f (p95 %.1f) for the %s detector "
+        "taking %.1f",
+        s.filter_ms, s.flow_ms, s.wait_ms, s.wait_p95_ms,
+        s.detector_name.empty() ? "(no)" : s.detector_name.c_str(), s.detect_ms);
   std::printf("); wrote %s\n", a.output.c_str());
+  if (a.options.rate_hz > 0) {
+    std::printf("input %g Hz, run-ahead %s: %zu frames handled after their turn\n",
+                a.options.rate_hz, a.options.run_ahead ? "on" : "off", s.late_frames);
+  }
   if (s.scored && a.options.mode != "orb") {
     std::printf(
         "rejection vs ground truth: precision %.3f recall %.3f with boundary points left out; "
@@ -174,6 +182,15 @@ void register_slam_commands(CLI::App& app) {
   run->add_option("--overlays-every", args->options.overlays_every, "A picture of every n-th frame")
       ->check(CLI::Range(1, 1000000));
   run->add_flag("-q,--quiet", args->options.quiet, "No progress line");
+  run->add_option("--rate", args->options.rate_hz,
+                  "Input rate (Hz) of an emulated camera: frame i arrives at i / HZ s (0 = as "
+                  "fast as possible)")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
+  run->add_flag_callback(
+      "--no-run-ahead", [args] { args->options.run_ahead = false; },
+      "Track each frame as it arrives, its detector started then (default: hand frame i+1 to the "
+      "detector before tracking frame i, tracking it once frame i+1 has arrived)");
   add_rejection_options(run, args->options);
   run->callback([args, run] { run_slam(*args, *run); });
 }

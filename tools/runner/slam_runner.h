@@ -44,6 +44,14 @@ struct RunOptions {
   slam::ObjectMaskParams mask;      // masked: depth segmentation
   float mask_reach = 1.0f;          // masked: RejectionParams::mask_reach
   slam::BoxTrackerParams tracking;  // masked: missed-detection recovery
+  // The input: an emulated camera whose frame i arrives at t0 + i / rate_hz
+  // (0 = every frame is there at once: as fast as possible).
+  double rate_hz = 0;
+  // Run-ahead: frame i+1 is handed over (System::look_ahead) before frame i
+  // is tracked, so its detector runs while frame i is tracked. Frame i is
+  // then tracked once frame i+1 has arrived (one frame of latency). Off:
+  // frame i is tracked when it arrives and its detector starts then.
+  bool run_ahead = true;
 };
 
 // Sets one rejection option by name, as a sweep's "rejection.KEY=VALUE":
@@ -61,6 +69,10 @@ struct RunSummary {
   size_t keyframes = 0, map_points = 0;
   double median_ms = 0, p95_ms = 0, extract_ms = 0, track_ms = 0;
   double filter_ms = 0, wait_ms = 0, detect_ms = 0, flow_ms = 0;  // medians
+  double wait_p95_ms = 0;
+  // With rate_hz: frames whose turn (the arrival of frame i, or of frame i+1
+  // with run-ahead) had passed when the loop got to them: the tracker lagged.
+  size_t late_frames = 0;
   double ba_ms_total = 0;
   std::vector<StampedPose> trajectory;
   std::vector<StampedPose> keyframes_trajectory;
