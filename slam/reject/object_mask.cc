@@ -46,12 +46,15 @@ namespace {
 // object's peak is the nearest local maximum scoring at least
 // `peak_share` of the best one. Returns the median depth of that window, or
 // 0 when fewer than `min_pixels` of the box have depth.
-float object_depth(const cv::Mat& depth, const cv::Rect& box, const ObjectMaskParams& p) {
+// `skip(x, y)`: image pixels to leave out (the support plane).
+template <typename Skip>
+float object_depth(const cv::Mat& depth, const cv::Rect& box, const ObjectMaskParams& p,
+                   Skip skip) {
   std::vector<float> values;
   for (int y = box.y; y < box.y + box.height; y += p.stride)
     for (int x = box.x; x < box.x + box.width; x += p.stride) {
       const float d = depth.at<float>(y, x);
-      if (d > 0 && std::isfinite(d)) values.push_back(d);
+      if (d > 0 && std::isfinite(d) && !skip(x, y)) values.push_back(d);
     }
   if (static_cast<int>(values.size()) < p.min_seed_pixels) return 0;
   const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
@@ -82,16 +85,19 @@ float object_depth(const cv::Mat& depth, const cv::Rect& box, const ObjectMaskPa
 }
 
 // The support plane of the region (see the header), as a mask of its
-// pixels on the stride grid (255 = on the plane); empty when there is none.
+// pixels on the stride grid (255 = on the plane); empty when there is none:
+// no plane holds `plane_min_share` of the region, or the plane does not
+// recede (its pixels span less than `plane_min_depth_range` in depth: it may
+// be the object itself, e.g. a torso; a floor runs on behind the object).
 cv::Mat support_plane(const cv::Mat& depth, const cv::Rect& region, int s, int gw, int gh,
-                      float mode, const PinholeCamera& camera, const ObjectMaskParams& p) {
+                      const PinholeCamera& camera, const ObjectMaskParams& p) {
   struct Sample {
     int gx, gy;
     Eigen::Vector3d x;
   };
   std::vector<Sample> samples;
   const int step = std::max(1, 4 / s);  // plane fitting on every 4th pixel
-  for (int gy = 0; gy < gh; gy += step)
+  for (int gy = gh * 2 / 3; gy < gh; gy += step)  // the bottom third: where a support is
     for (int gx = 0; gx < gw; gx += step) {
       const int u = region.x + gx * s, v = region.y + gy * s;
       const float d = depth.at<float>(v, u);
@@ -116,23 +122,29 @@ cv::Mat support_plane(const cv::Mat& depth, const cv::Rect& region, int s, int g
     if (inliers > best_inliers) best_inliers = inliers, best_n = n, best_c = off;
   }
   if (best_inliers < p.plane_min_share * samples.size()) return {};
-  // Mark the plane's pixels; count how many of the object's seeds it takes.
+  std::vector<double> z;
+  for (const Sample& q : samples)
+    if (std::fabs(best_n.dot(q.x) + best_c) <= tolerance(q.x.z())) z.push_back(q.x.z());
+  std::sort(z.begin(), z.end());
+  if (z[z.size() * 9 / 10] - z[z.size() / 10] < p.plane_min_depth_range) return {};
   cv::Mat plane(gh, gw, CV_8U, cv::Scalar(0));
-  size_t seeds = 0, seeds_on_plane = 0;
   for (int gy = 0; gy < gh; ++gy)
     for (int gx = 0; gx < gw; ++gx) {
       const int u = region.x + gx * s, v = region.y + gy * s;
       const float d = depth.at<float>(v, u);
-      if (!(d > 0)) continue;
-      const Eigen::Vector3d x = camera.unproject(u, v, d);
-      const bool on = std::fabs(best_n.dot(x) + best_c) <= tolerance(d);
-      plane.at<uint8_t>(gy, gx) = on ? 255 : 0;
-      if (std::fabs(d - mode) <= p.seed_band_m) {
-        ++seeds;
-        seeds_on_plane += on;
-      }
+      if (d > 0 && std::fabs(best_n.dot(camera.unproject(u, v, d)) + best_c) <= tolerance(d))
+        plane.at<uint8_t>(gy, gx) = 255;
     }
-  if (seeds == 0 || seeds_on_plane > p.plane_max_seed_share * seeds) return {};
+  // Only the plane's parts that reach the region's bottom edge: the floor
+  // runs on below the object; a coplanar patch elsewhere may be the object.
+  cv::Mat components;
+  const int n = cv::connectedComponents(plane, components, 4, CV_32S);
+  std::vector<uint8_t> touches_bottom(n, 0);
+  for (int gx = 0; gx < gw; ++gx) touches_bottom[components.at<int>(gh - 1, gx)] = 1;
+  for (int gy = 0; gy < gh; ++gy)
+    for (int gx = 0; gx < gw; ++gx)
+      if (plane.at<uint8_t>(gy, gx) && !touches_bottom[components.at<int>(gy, gx)])
+        plane.at<uint8_t>(gy, gx) = 0;
   return plane;
 }
 
@@ -170,20 +182,21 @@ ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box, const Obj
   out.region = search_region(box, depth.size(), p.grow);
   const cv::Rect inner = search_region(box, depth.size(), 0.0f);
   if (out.region.empty() || inner.empty()) return out;
-  const float mode = object_depth(depth, inner, p);
-  if (mode <= 0) return out;
-
-  // Region growing on the stride grid of the search region.
+  // Region growing on the stride grid of the search region, off its
+  // support plane.
   const int s = std::max(1, p.stride);
   const int gw = (out.region.width + s - 1) / s, gh = (out.region.height + s - 1) / s;
+  const cv::Mat plane = camera && p.remove_plane ? support_plane(depth, out.region, s, gw, gh, *camera, p) : cv::Mat();
+  auto on_plane = [&](int x, int y) { return !plane.empty() && plane.at<uint8_t>(y, x); };
+  const float mode = object_depth(depth, inner, p, [&](int x, int y) {
+    return on_plane((x - out.region.x) / s, (y - out.region.y) / s);
+  });
+  if (mode <= 0) return out;
   cv::Mat grid(gh, gw, CV_8U, cv::Scalar(0));
   auto depth_at = [&](int gx_, int gy_) {
     return depth.at<float>(out.region.y + gy_ * s, out.region.x + gx_ * s);
   };
   auto in_extent = [&](float d) { return d > 0 && std::fabs(d - mode) <= p.extent_m; };
-  const cv::Mat plane =
-      camera ? support_plane(depth, out.region, s, gw, gh, mode, *camera, p) : cv::Mat();
-  auto on_plane = [&](int x, int y) { return !plane.empty() && plane.at<uint8_t>(y, x); };
   std::deque<cv::Point> queue;
   int seeds = 0;
   for (int y = 0; y < gh; ++y)

@@ -6,8 +6,10 @@
 // depth changes smoothly (a depth edge stops it) and stays within the
 // object's depth extent. The floor an object stands on meets it without a
 // depth edge, so with the camera's intrinsics the dominant plane of the
-// search region (RANSAC on its 3D points) is taken out of the region first,
-// when it is a support surface: large, but holding few of the object's seeds. Pixels of the box at other depths are the background seen around
+// search region (RANSAC on its 3D points) is taken out of the region first
+// when it is a support surface: large, and receding in depth well beyond an
+// object's extent (a plane at one depth may be the object itself, e.g. a
+// torso). Pixels of the box at other depths are the background seen around
 // the object; pixels without depth are undecided. Boxes from a detector are
 // jittered and scaled, so the search region is the box grown on each side.
 #include <vector>
@@ -29,10 +31,11 @@ struct ObjectMaskParams {
   int stride = 1;                 // segment on every stride-th pixel (then upsampled)
   int min_seed_pixels = 12;       // fewer seeds at the mode: no mask (object without depth)
   // Support-plane removal (needs the camera):
+  bool remove_plane = true;
   float plane_tolerance_m = 0.02f;       // a pixel on the plane: this close, plus
   float plane_tolerance_per_m = 0.01f;   //   this much per metre of depth
-  float plane_min_share = 0.15f;         // the plane holds at least this share of the region
-  float plane_max_seed_share = 0.25f;    // and at most this share of the object's seeds
+  float plane_min_share = 0.3f;          // the plane holds at least this share of the region's bottom third
+  float plane_min_depth_range = 0.3f;    // and its pixels span this much depth (10-90 %)
   int plane_iterations = 80;
 };
 

@@ -142,6 +142,8 @@ void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const s
       const int n = value.as<int>();
       if (n < 0 || n > 1000) fail(where, "tracking.max_missed must be in [0, 1000] frames");
       o.tracking.max_missed = n;
+    } else if (setting.key == "mask.plane") {
+      o.mask.remove_plane = value.as<bool>();
     } else if (setting.key == "mask.stride") {
       const int n = value.as<int>();
       if (n < 1 || n > 16) fail(where, "mask.stride must be in [1, 16] px");
