@@ -8,8 +8,11 @@
 
 namespace depot::slam {
 
-DetectionThread::DetectionThread(Detector& detector, size_t max_jobs)
-    : detector_(detector), max_jobs_(std::max<size_t>(1, max_jobs)), thread_([this] { run(); }) {}
+DetectionThread::DetectionThread(Detector& detector, size_t max_jobs, PersonSegmenter* segmenter)
+    : detector_(detector),
+      segmenter_(segmenter),
+      max_jobs_(std::max<size_t>(1, max_jobs)),
+      thread_([this] { run(); }) {}
 
 DetectionThread::~DetectionThread() {
   {
@@ -43,8 +46,8 @@ void DetectionThread::submit(const cv::Mat& bgr, double timestamp, long frame_in
   cv_.notify_all();
 }
 
-std::vector<Detection> DetectionThread::wait(long frame_index, double* waited_ms,
-                                             double* detect_ms) {
+std::vector<Detection> DetectionThread::wait(long frame_index, double* waited_ms, double* detect_ms,
+                                             cv::Mat* person_mask, double* segment_ms) {
   const auto t0 = std::chrono::steady_clock::now();
   std::unique_lock<std::mutex> lock(mutex_);
   if (!find(frame_index))
@@ -59,6 +62,8 @@ std::vector<Detection> DetectionThread::wait(long frame_index, double* waited_ms
     *waited_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (detect_ms) *detect_ms = job->detect_ms;
+  if (person_mask) *person_mask = job->person_mask;
+  if (segment_ms) *segment_ms = job->segment_ms;
   std::vector<Detection> result = std::move(job->result);
   const std::exception_ptr error = job->error;
   // Forget this frame and earlier ones never waited for (not the one running).
@@ -108,8 +113,18 @@ void DetectionThread::run() {
     } catch (...) {
       error = std::current_exception();
     }
-    const double ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const auto t1 = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
+    cv::Mat person_mask;
+    if (segmenter_ && !error) {
+      try {
+        person_mask = segmenter_->mask(image).clone();  // the segmenter reuses its buffer
+      } catch (...) {
+        error = std::current_exception();
+      }
+    }
+    const double segment_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count();
     image.release();
     {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -118,6 +133,8 @@ void DetectionThread::run() {
       job->result = std::move(result);
       job->error = error;
       job->detect_ms = ms;
+      job->person_mask = std::move(person_mask);
+      job->segment_ms = segment_ms;
       job->state = JobState::kDone;
     }
     cv_.notify_all();

@@ -5,7 +5,8 @@
 //
 // Threads: the caller's thread calls submit() and wait(); the worker thread
 // runs the detector. All shared state (the job queue, results, errors, the
-// stop flag) is guarded by `mutex_`; the detector is used by the worker only.
+// stop flag) is guarded by `mutex_`; the detector and the optional person
+// segmenter are used by the worker only (after construction).
 #include <condition_variable>
 #include <deque>
 #include <exception>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "slam/detect/detection.h"
+#include "slam/detect/person_segmenter.h"
 
 namespace depot::slam {
 
@@ -21,7 +23,10 @@ class DetectionThread {
  public:
   // Submitting more than `max_jobs` frames that are not yet waited for is an
   // error (the caller looks ahead too far or never waits).
-  explicit DetectionThread(Detector& detector, size_t max_jobs = 4);
+  // `segmenter` (optional, not owned): also computes each frame's person
+  // mask in the worker, after the detector, so its cost is hidden too.
+  explicit DetectionThread(Detector& detector, size_t max_jobs = 4,
+                           PersonSegmenter* segmenter = nullptr);
   ~DetectionThread();  // finishes the running job, drops the queued ones
   DetectionThread(const DetectionThread&) = delete;
   DetectionThread& operator=(const DetectionThread&) = delete;
@@ -40,8 +45,11 @@ class DetectionThread {
   // blocked; `detect_ms`: the detector's own time on this frame. Rethrows
   // the detector's error for this frame; throws depot::Error for a frame
   // that was not submitted.
+  // With a segmenter, `person_mask` receives the frame's person mask (CV_8U,
+  // 255 = person) and `segment_ms` its time.
   std::vector<Detection> wait(long frame_index, double* waited_ms = nullptr,
-                              double* detect_ms = nullptr);
+                              double* detect_ms = nullptr, cv::Mat* person_mask = nullptr,
+                              double* segment_ms = nullptr);
 
   // Frames submitted and not yet waited for.
   size_t queued() const;
@@ -55,12 +63,15 @@ class DetectionThread {
     JobState state = JobState::kQueued;
     std::vector<Detection> result;
     double detect_ms = 0;
+    cv::Mat person_mask;
+    double segment_ms = 0;
     std::exception_ptr error;
   };
   Job* find(long frame_index);  // needs mutex_
   void run();
 
-  Detector& detector_;  // worker thread only
+  Detector& detector_;          // worker thread only
+  PersonSegmenter* segmenter_;  // worker thread only; may be null
   const size_t max_jobs_;
   mutable std::mutex mutex_;
   std::condition_variable cv_;

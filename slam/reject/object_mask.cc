@@ -96,7 +96,7 @@ cv::Mat support_plane(const cv::Mat& depth, const cv::Rect& region, int s, int g
     Eigen::Vector3d x;
   };
   std::vector<Sample> samples;
-  const int step = std::max(1, 4 / s);  // plane fitting on every 4th pixel
+  const int step = std::max(1, 4 / s);            // plane fitting on every 4th pixel
   for (int gy = gh * 2 / 3; gy < gh; gy += step)  // the bottom third: where a support is
     for (int gx = 0; gx < gw; gx += step) {
       const int u = region.x + gx * s, v = region.y + gy * s;
@@ -186,7 +186,9 @@ ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box, const Obj
   // support plane.
   const int s = std::max(1, p.stride);
   const int gw = (out.region.width + s - 1) / s, gh = (out.region.height + s - 1) / s;
-  const cv::Mat plane = camera && p.remove_plane ? support_plane(depth, out.region, s, gw, gh, *camera, p) : cv::Mat();
+  const cv::Mat plane = camera && p.remove_plane
+                            ? support_plane(depth, out.region, s, gw, gh, *camera, p)
+                            : cv::Mat();
   auto on_plane = [&](int x, int y) { return !plane.empty() && plane.at<uint8_t>(y, x); };
   const float mode = object_depth(depth, inner, p, [&](int x, int y) {
     return on_plane((x - out.region.x) / s, (y - out.region.y) / s);

@@ -32,10 +32,10 @@ struct ObjectMaskParams {
   int min_seed_pixels = 12;       // fewer seeds at the mode: no mask (object without depth)
   // Support-plane removal (needs the camera):
   bool remove_plane = true;
-  float plane_tolerance_m = 0.02f;       // a pixel on the plane: this close, plus
-  float plane_tolerance_per_m = 0.01f;   //   this much per metre of depth
-  float plane_min_share = 0.3f;          // the plane holds at least this share of the region's bottom third
-  float plane_min_depth_range = 0.3f;    // and its pixels span this much depth (10-90 %)
+  float plane_tolerance_m = 0.02f;      // a pixel on the plane: this close, plus
+  float plane_tolerance_per_m = 0.01f;  //   this much per metre of depth
+  float plane_min_share = 0.3f;  // the plane holds at least this share of the region's bottom third
+  float plane_min_depth_range = 0.3f;  // and its pixels span this much depth (10-90 %)
   int plane_iterations = 80;
 };
 

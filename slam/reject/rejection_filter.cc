@@ -80,6 +80,11 @@ RejectionFilter::RejectionFilter(RejectionMode mode, AprioriClasses classes, Det
   }
 }
 
+void RejectionFilter::set_segmenter(PersonSegmenter* segmenter) {
+  if (mode_ == RejectionMode::kMasked && params_.person_mask != RejectionParams::PersonMask::kDepth)
+    thread_ = std::make_unique<DetectionThread>(*detector_, 4, segmenter);
+}
+
 void RejectionFilter::begin_frame(const FrameImages& images) {
   if (thread_) thread_->submit(images.bgr, images.timestamp, images.frame_id);  // no-op if ahead
 }
@@ -94,7 +99,9 @@ void RejectionFilter::filter(const FrameImages& images, const std::vector<cv::Ke
   stats_.frame = images.frame_id;
   stats_.total = static_cast<int>(keypoints.size());
   detections_.clear();
-  if (thread_) detections_ = thread_->wait(images.frame_id, &stats_.wait_ms, &stats_.detect_ms);
+  if (thread_)
+    detections_ = thread_->wait(images.frame_id, &stats_.wait_ms, &stats_.detect_ms, &person_mask_,
+                                &stats_.segment_ms);
   const auto t0 = std::chrono::steady_clock::now();
   stats_.detections = static_cast<int>(detections_.size());
   keep.assign(keypoints.size(), 1);
@@ -179,19 +186,13 @@ std::vector<PointSet> RejectionFilter::masked_sets(const FrameImages& images,
     if (classes_.classify(d.class_name) != MotionClass::kStatic) movable.push_back(d);
   objects_ = box_tracker_.update(movable);
   masks_.clear();
-  const bool segment = segmenter_ && params_.person_mask != RejectionParams::PersonMask::kDepth;
-  const cv::Mat* person = nullptr;
+  const bool segment = !person_mask_.empty();
   for (TrackedBox& object : objects_) {
     ObjectMask mask =
         segment_object(images.depth, object.detection.box, params_.mask, images.camera);
     stats_.masks += mask.valid();
     if (segment && object.detection.class_name == "person") {
-      if (!person) {
-        const auto ts = std::chrono::steady_clock::now();
-        person = &segmenter_->mask(images.bgr);
-        stats_.segment_ms += ms_since(ts);
-      }
-      mask = with_segmentation(mask, *person, object.detection.box, params_.mask,
+      mask = with_segmentation(mask, person_mask_, object.detection.box, params_.mask,
                                params_.person_mask == RejectionParams::PersonMask::kBoth);
     }
     if (object.missed > 0) {

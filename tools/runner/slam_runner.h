@@ -42,7 +42,7 @@ struct RunOptions {
   std::string person_mask = "depth";
   std::string segmenter;
   slam::ObjectMaskParams mask;      // masked: depth segmentation
-  float mask_reach = 1.0f;          // masked: RejectionParams::mask_reach
+  float mask_reach = 0.5f;          // masked: RejectionParams::mask_reach
   slam::BoxTrackerParams tracking;  // masked: missed-detection recovery
   // The input: an emulated camera whose frame i arrives at t0 + i / rate_hz
   // (0 = every frame is there at once: as fast as possible).
