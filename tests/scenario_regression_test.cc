@@ -47,6 +47,20 @@ TEST_P(ScenarioRegression, MeetsItsBounds) {
   EXPECT_GT(full.score.recall(), b["recall_min"].as<double>()) << "rejection recall";
   EXPECT_GT(full.score.precision(), b["precision_min"].as<double>()) << "rejection precision";
   EXPECT_LE(full.lost, b["max_lost"].as<int>()) << "lost frames";
+  if (const YAML::Node m = b["masked"]) {
+    // Our mode beyond boxes: precision with boundary points left out.
+    slam::RejectionParams params;
+    SlamOutcome masked = run_slam_mode(data, slam::RejectionMode::kMasked, false, params);
+    std::printf(
+        "%s masked: ATE %.4f m, precision %.3f (boundary static %.3f) recall %.3f, lost %d\n",
+        GetParam().c_str(), masked.ate_rmse, masked.score.precision_without_boundary(),
+        masked.score.precision(), masked.score.recall(), masked.lost);
+    EXPECT_LT(masked.ate_rmse, m["ate_max"].as<double>()) << "masked ATE RMSE";
+    EXPECT_GT(masked.score.precision_without_boundary(), m["precision_min"].as<double>())
+        << "masked precision";
+    EXPECT_GT(masked.score.recall(), m["recall_min"].as<double>()) << "masked recall";
+    EXPECT_LE(masked.lost, m["max_lost"].as<int>()) << "masked lost frames";
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Shipped, ScenarioRegression,

@@ -71,7 +71,7 @@ std::vector<TrackedBox> BoxTracker::update(const std::vector<Detection>& detecti
     t.last_detected = now;
     t.missed = 0;
     t.detected++;
-    out.push_back({detections[d], t.id, 0});
+    out.push_back({detections[d], t.id, 0, t.depth});
   }
   // Tracks without a detection this frame: carried, or dropped after max_missed.
   std::vector<Track> kept;
@@ -79,7 +79,7 @@ std::vector<TrackedBox> BoxTracker::update(const std::vector<Detection>& detecti
     Track& track = tracks_[t];
     if (t < old_tracks && !track_used[t]) {
       if (++track.missed > params_.max_missed) continue;
-      out.push_back({track.detection, track.id, track.missed});
+      out.push_back({track.detection, track.id, track.missed, track.depth});
     }
     kept.push_back(track);
   }
@@ -90,6 +90,11 @@ std::vector<TrackedBox> BoxTracker::update(const std::vector<Detection>& detecti
 void BoxTracker::correct(int track_id, const cv::Rect2f& box) {
   for (Track& t : tracks_)
     if (t.id == track_id && t.missed > 0) t.detection.box = box;
+}
+
+void BoxTracker::set_depth(int track_id, float depth) {
+  for (Track& t : tracks_)
+    if (t.id == track_id) t.depth = depth;
 }
 
 }  // namespace depot::slam

@@ -24,7 +24,8 @@ struct BoxTrackerParams {
 struct TrackedBox {
   Detection detection;  // the detection, or the track's prediction when missed > 0
   int track_id = 0;
-  int missed = 0;  // frames since the track's last detection (0 = detected now)
+  int missed = 0;   // frames since the track's last detection (0 = detected now)
+  float depth = 0;  // the object's depth last recorded for the track (0 = none)
 };
 
 class BoxTracker {
@@ -38,6 +39,9 @@ class BoxTracker {
   // Replaces a carried track's box (the one update() just returned, same
   // track_id) by a measured one; its velocity is kept.
   void correct(int track_id, const cv::Rect2f& box);
+  // Records the object's depth (m) for the track, returned with it from the
+  // next update() (a carried box's object is looked for at that depth).
+  void set_depth(int track_id, float depth);
 
   size_t tracks() const { return tracks_.size(); }
 
@@ -50,6 +54,7 @@ class BoxTracker {
     cv::Size2f size_velocity{0, 0};
     int missed = 0;
     int detected = 0;  // detections so far
+    float depth = 0;
   };
   BoxTrackerParams params_;
   std::vector<Track> tracks_;

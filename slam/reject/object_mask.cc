@@ -176,7 +176,7 @@ ObjectMask with_segmentation(const ObjectMask& from_depth, const cv::Mat& segmen
 }
 
 ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box, const ObjectMaskParams& p,
-                          const PinholeCamera* camera) {
+                          const PinholeCamera* camera, float known_depth) {
   ObjectMask out;
   const cv::Rect image(0, 0, depth.cols, depth.rows);
   out.region = search_region(box, depth.size(), p.grow);
@@ -190,9 +190,10 @@ ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box, const Obj
                             ? support_plane(depth, out.region, s, gw, gh, *camera, p)
                             : cv::Mat();
   auto on_plane = [&](int x, int y) { return !plane.empty() && plane.at<uint8_t>(y, x); };
-  const float mode = object_depth(depth, inner, p, [&](int x, int y) {
-    return on_plane((x - out.region.x) / s, (y - out.region.y) / s);
-  });
+  const float mode =
+      known_depth > 0 ? known_depth : object_depth(depth, inner, p, [&](int x, int y) {
+        return on_plane((x - out.region.x) / s, (y - out.region.y) / s);
+      });
   if (mode <= 0) return out;
   cv::Mat grid(gh, gw, CV_8U, cv::Scalar(0));
   auto depth_at = [&](int gx_, int gy_) {

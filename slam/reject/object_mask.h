@@ -56,9 +56,11 @@ struct ObjectMask {
 
 // depth: CV_32F metres, 0 = none. `camera` (optional): the depth image's
 // intrinsics, for support-plane removal.
+// `known_depth` (m, 0 = find it): the object's depth when it is known, e.g.
+// from the previous frame for a box carried over a missed detection.
 ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box,
                           const ObjectMaskParams& params = {},
-                          const PinholeCamera* camera = nullptr);
+                          const PinholeCamera* camera = nullptr, float known_depth = 0);
 
 // A box's search region: grown by `grow` of its size per side, clipped to
 // the image.

@@ -188,8 +188,10 @@ std::vector<PointSet> RejectionFilter::masked_sets(const FrameImages& images,
   masks_.clear();
   const bool segment = !person_mask_.empty();
   for (TrackedBox& object : objects_) {
-    ObjectMask mask =
-        segment_object(images.depth, object.detection.box, params_.mask, images.camera);
+    // A carried box's object is looked for at the depth it had.
+    ObjectMask mask = segment_object(images.depth, object.detection.box, params_.mask,
+                                     images.camera, object.missed > 0 ? object.depth : 0.0f);
+    if (mask.valid()) box_tracker_.set_depth(object.track_id, mask.depth);
     stats_.masks += mask.valid();
     if (segment && object.detection.class_name == "person") {
       mask = with_segmentation(mask, person_mask_, object.detection.box, params_.mask,

@@ -32,8 +32,11 @@ SlamOutcome run_slam_mode(const std::string& dataset, slam::RejectionMode mode, 
     const double t = sequence.entry(i).rgb_timestamp;
     auto tr = system.track(bgr, depth, t);
     r.lost += tr.state == slam::TrackingState::kLost;
-    if (mode != slam::RejectionMode::kOrb)
-      r.score.add(filter.last_keep(), truth.on_moving_object(t, filter.last_keypoints()));
+    if (mode != slam::RejectionMode::kOrb) {
+      const auto labels =
+          truth.classify_keypoints(t, filter.last_keypoints(), settings.orb.scale_factor);
+      r.score.add(filter.last_keep(), labels.on_moving, labels.boundary);
+    }
   }
   system.finish();
   const auto estimate = system.trajectory();

@@ -49,8 +49,13 @@ int main(int argc, char** argv) {
   std::string mode = "orb";
   std::string detector_type = "sim";
   double rate_hz = 30;
+  std::string person_mask = "depth";
+  app.add_option("--person-mask", person_mask,
+                 "masked: person masks from depth, segmentation, both")
+      ->check(CLI::IsMember({"depth", "segmentation", "both"}))
+      ->capture_default_str();
   app.add_option("--mode", mode, "Rejection mode measured against plain orb in the same run")
-      ->check(CLI::IsMember({"orb", "orb+yolo", "orb+lk", "full"}));
+      ->check(CLI::IsMember({"orb", "orb+yolo", "orb+lk", "full", "masked"}));
   app.add_option("--detector", detector_type, "sim | darknet | fastestdet | yolov5")
       ->check(CLI::IsMember({"sim", "darknet", "fastestdet", "yolov5"}));
   app.add_option("--dataset", dataset, "TUM folder to run (default: render --scenario first)");
@@ -89,7 +94,8 @@ int main(int argc, char** argv) {
     const size_t n = std::min<size_t>(frames, sequence.size());
 
     struct Measured {
-      std::vector<double> total, extract, match, optimize, other, filter, wait, detect;
+      std::vector<double> total, extract, match, optimize, other, filter, wait, detect, mask,
+          segment;
       int lost = 0;
       double rss_start = 0, rss_early = 0, rss_end = 0;
       size_t kf_early = 0, kfs = 0, points = 0;
@@ -100,7 +106,9 @@ int main(int argc, char** argv) {
       options.dataset = dataset;
       options.mode = run_mode;
       options.detector = detector_type;
-      depot::runner::RejectionSetup rejection = depot::runner::make_rejection(options);
+      options.person_mask = person_mask;
+      depot::runner::RejectionSetup rejection =
+          depot::runner::make_rejection(options, settings.orb.scale_factor);
       depot::slam::RejectionFilter* filter = rejection.filter.get();
       depot::slam::System system(settings, filter);
       m.rss_start = rss_mb();
@@ -118,6 +126,8 @@ int main(int argc, char** argv) {
           m.filter.push_back(filter->last_stats().filter_ms);
           m.wait.push_back(filter->last_stats().wait_ms);
           m.detect.push_back(filter->last_stats().detect_ms);
+          m.mask.push_back(filter->last_stats().mask_ms);
+          m.segment.push_back(filter->last_stats().segment_ms);
         }
         if (i == n / 10) m.rss_early = rss_mb(), m.kf_early = system.n_keyframes();
       }
@@ -158,7 +168,10 @@ int main(int argc, char** argv) {
       std::printf("  mode %s with the %s detector (%d lost):\n", mode.c_str(),
                   detector_type.c_str(), run.lost);
       row("rejection stage (after detection)", run.filter);
+      if (mode == "masked") row("  of it: box tracking + depth masks", run.mask);
       row("detector (own thread)", run.detect);
+      if (mode == "masked" && person_mask != "depth")
+        row("person segmenter (own thread)", run.segment);
       row("tracking waited for the detector", run.wait);
       row("total per frame", run.total);
       const double det = percentile(run.detect, 0.5), wait = percentile(run.wait, 0.5);
@@ -169,6 +182,14 @@ int main(int argc, char** argv) {
           det > 0 ? 100.0 * (1.0 - wait / det) : 100.0,
           100.0 * percentile(run.filter, 0.5) / percentile(base_run.total, 0.5),
           percentile(run.filter, 0.5), percentile(base_run.total, 0.5));
+      const double frame_ms = percentile(run.total, 0.5);
+      std::printf(
+          "  share of this run's tracking time per frame (median %.2f ms): rejection stage %.1f %% "
+          "(goal < 15 %%)\n",
+          frame_ms, 100.0 * percentile(run.filter, 0.5) / frame_ms);
+      if (mode == "masked" && person_mask != "depth")
+        std::printf("  person segmenter: %.1f %% of it, hidden in the detection thread\n",
+                    100.0 * percentile(run.segment, 0.5) / frame_ms);
     }
     if (depot::slam::mode_uses_detector(depot::slam::parse_rejection_mode(mode))) {
       // The runner's loop with its emulated camera, run-ahead off then on.
@@ -181,6 +202,7 @@ int main(int argc, char** argv) {
         options.sync = sync;
         options.quiet = true;
         options.rate_hz = rate_hz;
+        options.person_mask = person_mask;
         options.run_ahead = run_ahead;
         return depot::runner::run_sequence(options);
       };
