@@ -120,19 +120,20 @@ TEST(CliSlam, WritesOneRowPerKeypointConsistentWithTheStatistics) {
   std::getline(k, line);
   EXPECT_EQ(line, "frame,timestamp,x,y,octave,set,kept,depth_m,on_moving,boundary,instance");
   while (std::getline(k, line)) {
-    int frame, octave, kept, moving, near;
+    int frame, octave, kept, moving, boundary, instance;
     double t, x, y, depth;
     char set;
-    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%lf,%lf,%lf,%d,%c,%d,%lf,%d,%d", &frame, &t, &x, &y,
-                          &octave, &set, &kept, &depth, &moving, &near),
-              10)
+    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%lf,%lf,%lf,%d,%c,%d,%lf,%d,%d,%d", &frame, &t, &x, &y,
+                          &octave, &set, &kept, &depth, &moving, &boundary, &instance),
+              11)
         << line;
     EXPECT_TRUE(set == 'Z' || set == 'Q' || set == 'P') << line;
     if (set == 'Z') {
       EXPECT_EQ(kept, 0) << line;  // Z is always rejected
     }
     EXPECT_GE(depth, 0.0);
-    EXPECT_TRUE(!moving || near) << line;  // on a mover is also near one
+    EXPECT_FALSE(moving && boundary) << line;  // on a mover is never on its boundary
+    EXPECT_GT(instance, 0) << line;             // every pixel belongs to some instance
     seen[frame].first++;
     seen[frame].second += kept;
     on_moving += moving;

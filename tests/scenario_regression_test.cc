@@ -1,5 +1,5 @@
 // Scenario regression tests (label `scenario`): short versions of the
-// shipped scenarios against the reviewed bounds in
+// shipped scenarios (orb, full and masked) against the reviewed bounds in
 // scenarios/regression/bounds.yaml.
 #include <yaml-cpp/yaml.h>
 

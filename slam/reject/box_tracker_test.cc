@@ -69,5 +69,16 @@ TEST(BoxTracker, CorrectionMovesACarriedBox) {
   EXPECT_FLOAT_EQ(boxes[0].detection.box.x, 90);  // no velocity yet: stays where corrected
 }
 
+TEST(BoxTracker, ACarriedBoxKeepsItsObjectsDepth) {
+  BoxTracker tracker;
+  const auto first = tracker.update({person_at(100)});
+  EXPECT_EQ(first[0].depth, 0.0f);  // nothing recorded yet
+  tracker.set_depth(first[0].track_id, 2.4f);
+  const auto carried = tracker.update({});
+  ASSERT_EQ(carried.size(), 1u);
+  EXPECT_EQ(carried[0].missed, 1);
+  EXPECT_FLOAT_EQ(carried[0].depth, 2.4f);
+}
+
 }  // namespace
 }  // namespace depot::slam
