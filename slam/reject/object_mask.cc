@@ -190,45 +190,77 @@ ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box, const Obj
                             ? support_plane(depth, out.region, s, gw, gh, *camera, p)
                             : cv::Mat();
   auto on_plane = [&](int x, int y) { return !plane.empty() && plane.at<uint8_t>(y, x); };
-  const float mode =
-      known_depth > 0 ? known_depth : object_depth(depth, inner, p, [&](int x, int y) {
-        return on_plane((x - out.region.x) / s, (y - out.region.y) / s);
-      });
-  if (mode <= 0) return out;
-  cv::Mat grid(gh, gw, CV_8U, cv::Scalar(0));
+  auto off_plane = [&](int x, int y) {
+    return on_plane((x - out.region.x) / s, (y - out.region.y) / s);
+  };
   auto depth_at = [&](int gx_, int gy_) {
     return depth.at<float>(out.region.y + gy_ * s, out.region.x + gx_ * s);
   };
-  auto in_extent = [&](float d) { return d > 0 && std::fabs(d - mode) <= p.extent_m; };
-  std::deque<cv::Point> queue;
-  int seeds = 0;
-  for (int y = 0; y < gh; ++y)
-    for (int x = 0; x < gw; ++x) {
-      const cv::Point pixel(out.region.x + x * s, out.region.y + y * s);
-      if (!inner.contains(pixel)) continue;
-      const float d = depth_at(x, y);
-      if (d > 0 && std::fabs(d - mode) <= p.seed_band_m && !on_plane(x, y)) {
-        grid.at<uint8_t>(y, x) = 255;
-        queue.emplace_back(x, y);
-        ++seeds;
+  // The region grown from the box's pixels within seed_band of `mode`, on
+  // the stride grid; empty when too few seeds.
+  auto grow = [&](float mode) {
+    cv::Mat grid(gh, gw, CV_8U, cv::Scalar(0));
+    std::deque<cv::Point> queue;
+    for (int y = 0; y < gh; ++y)
+      for (int x = 0; x < gw; ++x) {
+        const cv::Point pixel(out.region.x + x * s, out.region.y + y * s);
+        if (!inner.contains(pixel)) continue;
+        const float d = depth_at(x, y);
+        if (d > 0 && std::fabs(d - mode) <= p.seed_band_m && !on_plane(x, y)) {
+          grid.at<uint8_t>(y, x) = 255;
+          queue.emplace_back(x, y);
+        }
+      }
+    if (static_cast<int>(queue.size()) < p.min_seed_pixels / (s * s) + 1) return cv::Mat();
+    static const int kSteps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+    while (!queue.empty()) {
+      const cv::Point c = queue.front();
+      queue.pop_front();
+      const float dc = depth_at(c.x, c.y);
+      const float max_step = (p.edge_step_m + p.edge_step_per_m * dc) * s;
+      for (const auto& st : kSteps) {
+        const int nx = c.x + st[0], ny = c.y + st[1];
+        if (nx < 0 || ny < 0 || nx >= gw || ny >= gh || grid.at<uint8_t>(ny, nx)) continue;
+        const float dn = depth_at(nx, ny);
+        if (!(dn > 0) || std::fabs(dn - mode) > p.extent_m || std::fabs(dn - dc) > max_step ||
+            on_plane(nx, ny))
+          continue;
+        grid.at<uint8_t>(ny, nx) = 255;
+        queue.emplace_back(nx, ny);
       }
     }
-  if (seeds < p.min_seed_pixels / (s * s) + 1) return out;
-  static const int kSteps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
-  while (!queue.empty()) {
-    const cv::Point c = queue.front();
-    queue.pop_front();
-    const float dc = depth_at(c.x, c.y);
-    const float max_step = (p.edge_step_m + p.edge_step_per_m * dc) * s;
-    for (const auto& st : kSteps) {
-      const int nx = c.x + st[0], ny = c.y + st[1];
-      if (nx < 0 || ny < 0 || nx >= gw || ny >= gh || grid.at<uint8_t>(ny, nx)) continue;
-      const float dn = depth_at(nx, ny);
-      if (!in_extent(dn) || std::fabs(dn - dc) > max_step || on_plane(nx, ny)) continue;
-      grid.at<uint8_t>(ny, nx) = 255;
-      queue.emplace_back(nx, ny);
+    return grid;
+  };
+  // The box's top rows (middle columns): a box is tight around its object,
+  // whose top (a head, a back) reaches the box's top edge.
+  const int top_w = std::max(1, static_cast<int>(std::lround(p.top_columns * inner.width)));
+  const cv::Rect top(inner.x + (inner.width - top_w) / 2, inner.y, top_w,
+                     std::max(1, static_cast<int>(std::lround(p.top_rows * inner.height))));
+  auto reaches_top = [&](const cv::Mat& grid) {
+    int on = 0, all = 0;
+    for (int y = top.y; y < top.y + top.height; y += s)
+      for (int x = top.x; x < top.x + top.width; x += s) {
+        const int gx_ = (x - out.region.x) / s, gy_ = (y - out.region.y) / s;
+        if (gx_ >= gw || gy_ >= gh) continue;
+        ++all;
+        on += grid.at<uint8_t>(gy_, gx_) != 0;
+      }
+    return all > 0 && on >= p.top_min_share * all;
+  };
+  float mode = known_depth > 0 ? known_depth : object_depth(depth, inner, p, off_plane);
+  if (mode <= 0) return out;
+  cv::Mat grid = grow(mode);
+  if (known_depth <= 0 && p.top_min_share > 0 && (grid.empty() || !reaches_top(grid))) {
+    // The nearest object does not reach the box's top: an occluder standing
+    // before the detected object (a monitor before a seated person). The
+    // object is the one at the depth of the box's top.
+    const float top_mode = object_depth(depth, top, p, off_plane);
+    if (top_mode > 0 && std::fabs(top_mode - mode) > p.seed_band_m) {
+      cv::Mat top_grid = grow(top_mode);
+      if (!top_grid.empty()) grid = top_grid, mode = top_mode;
     }
   }
+  if (grid.empty()) return out;
   // Close pinholes (sensor noise, missing depth inside the object), then
   // back to image pixels.
   cv::morphologyEx(grid, grid, cv::MORPH_CLOSE,

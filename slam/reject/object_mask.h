@@ -1,7 +1,10 @@
 #pragma once
 // An object's pixels inside its detection box, segmented from depth: the
 // box's object is the nearest strong peak of the box's depth histogram (a
-// detected object stands in front of what else its box holds); the box's
+// detected object stands in front of what else its box holds) unless its
+// region does not reach the box's top (then it is an occluder standing
+// before the object, e.g. a monitor before a seated person, and the object
+// is the one at the depth of the box's top); the box's
 // pixels at that depth seed a region grown over neighbouring pixels whose
 // depth changes smoothly (a depth edge stops it) and stays within the
 // object's depth extent. The floor an object stands on meets it without a
@@ -25,8 +28,14 @@ struct ObjectMaskParams {
   float bin_m = 0.05f;        // depth histogram bin for the object's depth
   float seed_band_m = 0.25f;  // half an object's thickness: peak window, and seeds' distance to it
   float peak_share = 0.5f;    // the nearest peak holding this share of the strongest one
-  float extent_m = 0.6f;      // the object reaches this far in depth from its mode
-  float edge_step_m = 0.04f;  // a depth edge: neighbours further apart than
+  // Occluders: when the nearest object's region covers less than
+  // top_min_share of the box's top (top_rows of its rows, top_columns of its
+  // middle columns), the object is the one at the depth of the box's top.
+  float top_rows = 0.25f;
+  float top_columns = 0.6f;
+  float top_min_share = 0.0f;     // 0 = no occluder test (the default; see the README)
+  float extent_m = 0.6f;          // the object reaches this far in depth from its mode
+  float edge_step_m = 0.04f;      // a depth edge: neighbours further apart than
   float edge_step_per_m = 0.03f;  //   edge_step_m + edge_step_per_m * depth (m)
   int stride = 1;                 // segment on every stride-th pixel (then upsampled)
   int min_seed_pixels = 12;       // fewer seeds at the mode: no mask (object without depth)

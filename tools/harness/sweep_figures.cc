@@ -53,7 +53,8 @@ void add_pair(const SweepPlan& plan, const SweepSummary& s, const std::vector<si
   eval::SeriesPlot rejection = ate;
   rejection.title =
       "Rejection precision / recall vs " + x_label + (group.empty() ? "" : " (" + group + ")");
-  rejection.y_label = "precision (solid, circles), recall (dashed, squares)";
+  rejection.y_label =
+      "precision, boundary points left out (solid, circles), recall (dashed, squares)";
   rejection.log_y = false;
   rejection.y_lo = 0.0;
   rejection.y_hi = 1.0;
@@ -67,12 +68,12 @@ void add_pair(const SweepPlan& plan, const SweepSummary& s, const std::vector<si
       const CellModeSummary& e = *s.find(c, mode);
       a.mean.push_back(e.ate_rmse.mean);
       a.std.push_back(e.ate_rmse.std);
-      p.mean.push_back(e.precision.mean);
-      p.std.push_back(e.precision.std);
+      p.mean.push_back(e.precision_without_boundary.mean);
+      p.std.push_back(e.precision_without_boundary.std);
       r.mean.push_back(e.recall.mean);
       r.std.push_back(e.recall.std);
       any_ate = any_ate || e.ate_rmse.count > 0;
-      any_rejection = any_rejection || e.precision.count > 0 || e.recall.count > 0;
+      any_rejection = any_rejection || e.precision_without_boundary.count > 0 || e.recall.count > 0;
     }
     ate.series.push_back(a);
     if (mode != "orb") {

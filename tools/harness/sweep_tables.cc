@@ -81,7 +81,8 @@ Table ablation_table(const SweepPlan& plan, const SweepSummary& s) {
       "in each trajectory: a run that loses tracking for good has a short one (see the "
       "tracked column of the rejection table). The paired difference is the compared mode's "
       "ATE minus orb's on the same seed (mm, mean ± std; negative = better than orb), and t "
-      "its paired t statistic: |t| under about 2 means the seeds show no difference.";
+      "its paired t statistic: |t| under about 2 means the seeds show no difference. With "
+      "masked and full both run, masked - full is the same on those two modes.";
   add_cell_columns(plan, t);
   t.columns.push_back({"moving px", 1, false, " %"});
   for (const auto& mode : plan.spec.modes) t.columns.push_back({mode, 4, true});
@@ -91,6 +92,12 @@ Table ablation_table(const SweepPlan& plan, const SweepSummary& s) {
     t.columns.push_back({cmp + " vs orb (Eq. 9)", 1, false, " %"});
     t.columns.push_back({cmp + " - orb, paired (mm)", 2, true});
     t.columns.push_back({"t", 1});
+  }
+  // Our mode beyond boxes against the paper's full, paired by seed.
+  const bool masked_vs_full = has_mode(plan.spec, "masked") && has_mode(plan.spec, "full");
+  if (masked_vs_full) {
+    t.columns.push_back({"masked - full, paired (mm)", 2, true});
+    t.columns.push_back({"t (masked - full)", 1});
   }
   t.columns.push_back({"runs"});
   for (size_t c = 0; c < plan.cells.size(); ++c) {
@@ -103,6 +110,14 @@ Table ablation_table(const SweepPlan& plan, const SweepSummary& s) {
       row.push_back(number(paired_improvement(orb, ours, &RunRecord::ate_rmse)));
       const PairedDifference d = paired_difference(orb, ours, &RunRecord::ate_rmse);
       MeanStd mm = d.difference;  // m -> mm
+      mm.mean *= 1000, mm.std *= 1000;
+      row.push_back(number(mm));
+      row.push_back(number(d.t));
+    }
+    if (masked_vs_full) {
+      const PairedDifference d =
+          paired_difference(*s.find(c, "full"), *s.find(c, "masked"), &RunRecord::ate_rmse);
+      MeanStd mm = d.difference;
       mm.mean *= 1000, mm.std *= 1000;
       row.push_back(number(mm));
       row.push_back(number(d.t));

@@ -158,6 +158,7 @@ void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const s
                   {"mask.edge_step", &o.mask.edge_step_m, 0.0f, 10.0f},
                   {"mask.edge_step_per_m", &o.mask.edge_step_per_m, 0.0f, 1.0f},
                   {"mask.reach", &o.mask_reach, 0.0f, 3.0f},
+                  {"mask.top_min_share", &o.mask.top_min_share, 0.0f, 1.0f},
                   {"tracking.min_iou", &o.tracking.min_iou, 0.0f, 1.0f}};
       for (const Key& k : keys) {
         if (setting.key != k.name) continue;
