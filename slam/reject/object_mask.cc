@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 
 #include <Eigen/Geometry>
 #include <opencv2/imgproc.hpp>
@@ -20,10 +19,16 @@ bool ObjectMask::on_object(int x, int y) const {
 
 bool ObjectMask::touches(const cv::KeyPoint& kp, float scale_factor, float reach) const {
   if (!valid()) return false;
+  // Quick rejection: the circle's bounding square misses the region.
+  float scale = reach;
+  for (int o = 0; o < kp.octave; ++o) scale *= scale_factor;
+  const float r = 3 * scale + 1;
+  if (kp.pt.x + r < region.x || kp.pt.y + r < region.y || kp.pt.x - r >= region.br().x ||
+      kp.pt.y - r >= region.br().y)
+    return false;
   if (on_object(static_cast<int>(std::lround(kp.pt.x)), static_cast<int>(std::lround(kp.pt.y))))
     return true;
   if (reach <= 0) return false;
-  const float scale = reach * std::pow(scale_factor, static_cast<float>(std::max(0, kp.octave)));
   for (const auto& d : kFastCircle)
     if (on_object(static_cast<int>(std::lround(kp.pt.x + scale * d[0])),
                   static_cast<int>(std::lround(kp.pt.y + scale * d[1]))))
@@ -51,12 +56,13 @@ template <typename Skip>
 float object_depth(const cv::Mat& depth, const cv::Rect& box, const ObjectMaskParams& p,
                    Skip skip) {
   std::vector<float> values;
-  for (int y = box.y; y < box.y + box.height; y += p.stride)
-    for (int x = box.x; x < box.x + box.width; x += p.stride) {
+  const int step = std::max(2, p.stride);  // every other pixel is plenty for a histogram
+  for (int y = box.y; y < box.y + box.height; y += step)
+    for (int x = box.x; x < box.x + box.width; x += step) {
       const float d = depth.at<float>(y, x);
       if (d > 0 && std::isfinite(d) && !skip(x, y)) values.push_back(d);
     }
-  if (static_cast<int>(values.size()) < p.min_seed_pixels) return 0;
+  if (static_cast<int>(values.size()) < p.min_seed_pixels / (step * step) + 1) return 0;
   const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
   const int bins = std::min(4000, static_cast<int>((*hi - *lo) / p.bin_m) + 1);
   std::vector<int> hist(bins, 0);
@@ -96,7 +102,7 @@ cv::Mat support_plane(const cv::Mat& depth, const cv::Rect& region, int s, int g
     Eigen::Vector3d x;
   };
   std::vector<Sample> samples;
-  const int step = std::max(1, 4 / s);            // plane fitting on every 4th pixel
+  const int step = std::max(1, 8 / s);            // plane fitting on every 8th pixel
   for (int gy = gh * 2 / 3; gy < gh; gy += step)  // the bottom third: where a support is
     for (int gx = 0; gx < gw; gx += step) {
       const int u = region.x + gx * s, v = region.y + gy * s;
@@ -127,14 +133,25 @@ cv::Mat support_plane(const cv::Mat& depth, const cv::Rect& region, int s, int g
     if (std::fabs(best_n.dot(q.x) + best_c) <= tolerance(q.x.z())) z.push_back(q.x.z());
   std::sort(z.begin(), z.end());
   if (z[z.size() * 9 / 10] - z[z.size() / 10] < p.plane_min_depth_range) return {};
+  // n . X(u, v, d) + c = d (n_x (u - cx) / fx + n_y (v - cy) / fy + n_z) + c:
+  // per-column and per-row terms, so marking costs a few operations a pixel.
+  std::vector<float> column(gw);
+  for (int gx = 0; gx < gw; ++gx)
+    column[gx] =
+        static_cast<float>(best_n.x() * (region.x + gx * s - camera.cx) / camera.fx + best_n.z());
+  const float c = static_cast<float>(best_c);
+  const float tol0 = p.plane_tolerance_m, tol1 = p.plane_tolerance_per_m;
   cv::Mat plane(gh, gw, CV_8U, cv::Scalar(0));
-  for (int gy = 0; gy < gh; ++gy)
+  for (int gy = 0; gy < gh; ++gy) {
+    const int v = region.y + gy * s;
+    const float row = static_cast<float>(best_n.y() * (v - camera.cy) / camera.fy);
+    const float* d = depth.ptr<float>(v) + region.x;
+    uint8_t* out = plane.ptr<uint8_t>(gy);
     for (int gx = 0; gx < gw; ++gx) {
-      const int u = region.x + gx * s, v = region.y + gy * s;
-      const float d = depth.at<float>(v, u);
-      if (d > 0 && std::fabs(best_n.dot(camera.unproject(u, v, d)) + best_c) <= tolerance(d))
-        plane.at<uint8_t>(gy, gx) = 255;
+      const float z = d[gx * s];
+      if (z > 0 && std::fabs(z * (column[gx] + row) + c) <= tol0 + tol1 * z) out[gx] = 255;
     }
+  }
   // Only the plane's parts that reach the region's bottom edge: the floor
   // runs on below the object; a coplanar patch elsewhere may be the object.
   cv::Mat components;
@@ -196,37 +213,48 @@ ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box, const Obj
   auto depth_at = [&](int gx_, int gy_) {
     return depth.at<float>(out.region.y + gy_ * s, out.region.x + gx_ * s);
   };
+  // The depths on the stride grid, row-major, and the plane as a flag per cell.
+  std::vector<float> grid_depth(static_cast<size_t>(gw) * gh);
+  std::vector<uint8_t> blocked(grid_depth.size(), 0);
+  for (int gy = 0; gy < gh; ++gy)
+    for (int gx = 0; gx < gw; ++gx) {
+      const size_t i = static_cast<size_t>(gy) * gw + gx;
+      grid_depth[i] = depth_at(gx, gy);
+      blocked[i] = on_plane(gx, gy) || !(grid_depth[i] > 0);
+    }
+  const int in_x0 = (inner.x - out.region.x + s - 1) / s,
+            in_y0 = (inner.y - out.region.y + s - 1) / s;
+  const int in_x1 = std::min(gw, (inner.x + inner.width - out.region.x + s - 1) / s);
+  const int in_y1 = std::min(gh, (inner.y + inner.height - out.region.y + s - 1) / s);
   // The region grown from the box's pixels within seed_band of `mode`, on
-  // the stride grid; empty when too few seeds.
+  // the stride grid (flat FIFO breadth-first search); empty when too few seeds.
+  std::vector<int> queue;
+  queue.reserve(grid_depth.size());
   auto grow = [&](float mode) {
     cv::Mat grid(gh, gw, CV_8U, cv::Scalar(0));
-    std::deque<cv::Point> queue;
-    for (int y = 0; y < gh; ++y)
-      for (int x = 0; x < gw; ++x) {
-        const cv::Point pixel(out.region.x + x * s, out.region.y + y * s);
-        if (!inner.contains(pixel)) continue;
-        const float d = depth_at(x, y);
-        if (d > 0 && std::fabs(d - mode) <= p.seed_band_m && !on_plane(x, y)) {
-          grid.at<uint8_t>(y, x) = 255;
-          queue.emplace_back(x, y);
+    uint8_t* g = grid.ptr<uint8_t>();
+    queue.clear();
+    for (int y = in_y0; y < in_y1; ++y)
+      for (int x = in_x0; x < in_x1; ++x) {
+        const int i = y * gw + x;
+        if (!blocked[i] && std::fabs(grid_depth[i] - mode) <= p.seed_band_m) {
+          g[i] = 255;
+          queue.push_back(i);
         }
       }
     if (static_cast<int>(queue.size()) < p.min_seed_pixels / (s * s) + 1) return cv::Mat();
-    static const int kSteps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
-    while (!queue.empty()) {
-      const cv::Point c = queue.front();
-      queue.pop_front();
-      const float dc = depth_at(c.x, c.y);
+    for (size_t head = 0; head < queue.size(); ++head) {
+      const int c = queue[head], cx = c % gw, cy = c / gw;
+      const float dc = grid_depth[c];
       const float max_step = (p.edge_step_m + p.edge_step_per_m * dc) * s;
-      for (const auto& st : kSteps) {
-        const int nx = c.x + st[0], ny = c.y + st[1];
-        if (nx < 0 || ny < 0 || nx >= gw || ny >= gh || grid.at<uint8_t>(ny, nx)) continue;
-        const float dn = depth_at(nx, ny);
-        if (!(dn > 0) || std::fabs(dn - mode) > p.extent_m || std::fabs(dn - dc) > max_step ||
-            on_plane(nx, ny))
-          continue;
-        grid.at<uint8_t>(ny, nx) = 255;
-        queue.emplace_back(nx, ny);
+      const int neighbours[4] = {cx + 1 < gw ? c + 1 : -1, cx > 0 ? c - 1 : -1,
+                                 cy + 1 < gh ? c + gw : -1, cy > 0 ? c - gw : -1};
+      for (int n : neighbours) {
+        if (n < 0 || g[n] || blocked[n]) continue;
+        const float dn = grid_depth[n];
+        if (std::fabs(dn - mode) > p.extent_m || std::fabs(dn - dc) > max_step) continue;
+        g[n] = 255;
+        queue.push_back(n);
       }
     }
     return grid;

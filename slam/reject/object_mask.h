@@ -45,7 +45,7 @@ struct ObjectMaskParams {
   float plane_tolerance_per_m = 0.01f;  //   this much per metre of depth
   float plane_min_share = 0.3f;  // the plane holds at least this share of the region's bottom third
   float plane_min_depth_range = 0.3f;  // and its pixels span this much depth (10-90 %)
-  int plane_iterations = 80;
+  int plane_iterations = 50;
 };
 
 struct ObjectMask {
