@@ -178,5 +178,58 @@ TEST(CliSlam, RunAheadLeavesTheTrajectoryUnchanged) {
       << orb.output;
 }
 
+TEST(CliSlam, MaskedModeScoresBothWaysAndDrawsPictures) {
+  std::string d = render_small({"depot_walking_xyz", 20, 640, false});
+  const std::string out = temp_path("traj") + ".txt", pictures = temp_path("pictures");
+  DepotResult r = depot("slam run " + d + " -o " + out + " --mode masked --mapping sync -q " +
+                        "--overlays " + pictures + " --overlays-every 5");
+  ASSERT_EQ(r.code, 0) << r.output;
+  double precision = 0, recall = 0, precision_static = 0;
+  const size_t at = r.output.find("rejection vs ground truth: ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  ASSERT_EQ(std::sscanf(r.output.c_str() + at,
+                        "rejection vs ground truth: precision %lf recall %lf with boundary points "
+                        "left out; precision %lf",
+                        &precision, &recall, &precision_static),
+            3)
+      << r.output;
+  EXPECT_GT(precision, 0.8) << r.output;  // people segmented from depth inside their boxes
+  EXPECT_GT(recall, 0.8) << r.output;
+  EXPECT_LE(precision_static, precision);  // boundary points counted as static only lower it
+  // Pictures of frames 0, 5, 10, 15 and their index.
+  for (const char* f : {"000000", "000005", "000010", "000015"})
+    EXPECT_TRUE(fs::is_regular_file(pictures + "/frames/" + f + ".png")) << f;
+  EXPECT_FALSE(fs::exists(pictures + "/frames/000001.png"));
+  std::ifstream index(pictures + "/index.txt");
+  const std::string text(std::istreambuf_iterator<char>(index), {});
+  EXPECT_NE(text.find("15 "), std::string::npos) << text;
+  const cv::Mat picture = cv::imread(pictures + "/frames/000010.png");
+  EXPECT_EQ(picture.cols, 640);
+
+  // A folder holding a user's file is never written into; options of other
+  // modes or sources are refused.
+  const std::string mine = temp_path("mine");
+  fs::create_directories(mine);
+  std::ofstream(mine + "/notes.txt") << "mine";
+  DepotResult refused = depot("slam run " + d + " -o " + temp_path("t") +
+                              ".txt --mode masked -q --overlays " + mine);
+  EXPECT_NE(refused.code, 0);
+  EXPECT_TRUE(fs::is_regular_file(mine + "/notes.txt"));
+  DepotResult full =
+      depot("slam run " + d + " -o " + temp_path("t") + ".txt --mode full -q --person-mask both");
+  EXPECT_NE(full.output.find("--person-mask: has no effect in --mode full"), std::string::npos)
+      << full.output;
+  DepotResult seg = depot("slam run " + d + " -o " + temp_path("t") +
+                          ".txt --mode masked -q --segmenter scenes/segmenters/selfie.yaml");
+  EXPECT_NE(seg.output.find("--segmenter: has no effect with --person-mask depth"),
+            std::string::npos)
+      << seg.output;
+  DepotResult key = depot("slam run " + d + " -o " + temp_path("t") +
+                          ".txt --mode masked -q --rejection-set mask.nonsense=1");
+  EXPECT_NE(key.code, 0);
+  EXPECT_NE(key.output.find("unknown rejection setting 'mask.nonsense'"), std::string::npos)
+      << key.output;
+}
+
 }  // namespace
 }  // namespace depot::test

@@ -57,6 +57,8 @@ struct RunArgs {
 
 void run_slam(RunArgs& a, const CLI::App& cmd) {
   check_options_used_by_mode(a.options.mode, cmd);
+  if (cmd.count("--segmenter") && a.options.person_mask == "depth")
+    fail("--segmenter", "has no effect with --person-mask depth (choose segmentation or both)");
   // Every output must be writable before a long run starts, not after it.
   for (const std::string* path :
        {&a.output, &a.keyframes, &a.options.stats_csv, &a.options.keypoints_csv})
