@@ -293,8 +293,12 @@ ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box, const Obj
   // back to image pixels.
   cv::morphologyEx(grid, grid, cv::MORPH_CLOSE,
                    cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3)));
-  cv::resize(grid, out.mask, cv::Size(gw * s, gh * s), 0, 0, cv::INTER_NEAREST);
-  out.mask = out.mask(cv::Rect(0, 0, out.region.width, out.region.height)).clone();
+  if (s == 1) {
+    out.mask = grid;  // already the region's size
+  } else {
+    cv::resize(grid, out.mask, cv::Size(gw * s, gh * s), 0, 0, cv::INTER_NEAREST);
+    out.mask = out.mask(cv::Rect(0, 0, out.region.width, out.region.height)).clone();
+  }
   out.depth = mode;
   return out;
 }

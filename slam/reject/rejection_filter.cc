@@ -208,13 +208,16 @@ std::vector<PointSet> RejectionFilter::masked_sets(const FrameImages& images,
     masks_.push_back(std::move(mask));
   }
 
+  std::vector<PointSet> object_sets;  // Z for dynamic objects, Q for potentially dynamic ones
+  for (const TrackedBox& object : objects_)
+    object_sets.push_back(classes_.classify(object.detection.class_name) == MotionClass::kDynamic
+                              ? PointSet::kZ
+                              : PointSet::kQ);
   std::vector<PointSet> sets(keypoints.size(), PointSet::kP);
   for (size_t i = 0; i < keypoints.size(); ++i) {
     const cv::KeyPoint& kp = keypoints[i];
     for (size_t k = 0; k < objects_.size() && sets[i] != PointSet::kZ; ++k) {
-      const bool dynamic =
-          classes_.classify(objects_[k].detection.class_name) == MotionClass::kDynamic;
-      const PointSet object_set = dynamic ? PointSet::kZ : PointSet::kQ;
+      const PointSet object_set = object_sets[k];
       const ObjectMask& mask = masks_[k];
       // A box whose object has no depth at all: the whole box, as the paper.
       const bool on_object = mask.valid()
