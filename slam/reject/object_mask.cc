@@ -206,22 +206,24 @@ ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box, const Obj
   const cv::Mat plane = camera && p.remove_plane
                             ? support_plane(depth, out.region, s, gw, gh, *camera, p)
                             : cv::Mat();
-  auto on_plane = [&](int x, int y) { return !plane.empty() && plane.at<uint8_t>(y, x); };
+  const uint8_t* plane_cells = plane.empty() ? nullptr : plane.ptr<uint8_t>();  // gh x gw
+  auto on_plane = [&](int x, int y) { return plane_cells && plane_cells[y * gw + x]; };
   auto off_plane = [&](int x, int y) {
     return on_plane((x - out.region.x) / s, (y - out.region.y) / s);
-  };
-  auto depth_at = [&](int gx_, int gy_) {
-    return depth.at<float>(out.region.y + gy_ * s, out.region.x + gx_ * s);
   };
   // The depths on the stride grid, row-major, and the plane as a flag per cell.
   std::vector<float> grid_depth(static_cast<size_t>(gw) * gh);
   std::vector<uint8_t> blocked(grid_depth.size(), 0);
-  for (int gy = 0; gy < gh; ++gy)
+  for (int gy = 0; gy < gh; ++gy) {
+    const float* d = depth.ptr<float>(out.region.y + gy * s) + out.region.x;
+    const uint8_t* on = plane_cells ? plane_cells + static_cast<size_t>(gy) * gw : nullptr;
+    float* gd = grid_depth.data() + static_cast<size_t>(gy) * gw;
+    uint8_t* b = blocked.data() + static_cast<size_t>(gy) * gw;
     for (int gx = 0; gx < gw; ++gx) {
-      const size_t i = static_cast<size_t>(gy) * gw + gx;
-      grid_depth[i] = depth_at(gx, gy);
-      blocked[i] = on_plane(gx, gy) || !(grid_depth[i] > 0);
+      gd[gx] = d[gx * s];
+      b[gx] = !(gd[gx] > 0) || (on && on[gx]);
     }
+  }
   const int in_x0 = (inner.x - out.region.x + s - 1) / s,
             in_y0 = (inner.y - out.region.y + s - 1) / s;
   const int in_x1 = std::min(gw, (inner.x + inner.width - out.region.x + s - 1) / s);
