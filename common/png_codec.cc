@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 
 #include <opencv2/imgcodecs.hpp>
@@ -133,6 +134,15 @@ cv::Mat read_image(const std::string& path, ImageRead mode) {
       cv::imread(path, mode == ImageRead::kColor ? cv::IMREAD_COLOR : cv::IMREAD_UNCHANGED);
   if (image.empty()) fail(path, "unreadable image (not a PNG, and OpenCV cannot decode it)");
   return image;
+}
+
+size_t write_png(const std::string& path, const cv::Mat& image, PngKind kind,
+                 int compression_level) {
+  const std::vector<unsigned char> buf = encode_png(image, kind, compression_level);
+  std::ofstream out(path, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(buf.data()), static_cast<std::streamsize>(buf.size()));
+  if (!out) fail(path, "write failed (disk full?)");
+  return buf.size();
 }
 
 }  // namespace depot

@@ -21,6 +21,11 @@ enum class PngKind {
 std::vector<unsigned char> encode_png(const cv::Mat& image, PngKind kind,
                                       int compression_level = 1);
 
+// Encodes `image` as encode_png does and writes it to `path`; returns the
+// bytes written. Throws depot::Error("<path>: write failed ...").
+size_t write_png(const std::string& path, const cv::Mat& image, PngKind kind,
+                 int compression_level = 1);
+
 enum class ImageRead {
   kColor,      // CV_8UC3 BGR, as cv::IMREAD_COLOR
   kUnchanged,  // bit depth and channels as stored (alpha dropped), as cv::IMREAD_UNCHANGED

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/fast_circle.h"
 #include "common/png_codec.h"
 #include "common/tum_io.h"
 
@@ -90,22 +91,13 @@ MotionTruth::KeypointTruth MotionTruth::classify_keypoints(
     return x >= 0 && y >= 0 && x < labels.cols && y < labels.rows &&
            moving->second.count(labels.at<uint16_t>(y, x));
   };
-  // FAST-9's Bresenham circle of radius 3 (16 pixels).
-  static const int kCircle[16][2] = {{0, 3},  {1, 3},  {2, 2},  {3, 1},   {3, 0},   {3, -1},
-                                     {2, -2}, {1, -3}, {0, -3}, {-1, -3}, {-2, -2}, {-3, -1},
-                                     {-3, 0}, {-3, 1}, {-2, 2}, {-1, 3}};
   for (size_t i = 0; i < keypoints.size(); ++i) {
     const cv::KeyPoint& kp = keypoints[i];
     const int cx = static_cast<int>(std::lround(kp.pt.x));
     const int cy = static_cast<int>(std::lround(kp.pt.y));
     out.on_moving[i] = moving_at(cx, cy);
     if (out.on_moving[i]) continue;
-    const float scale = std::pow(scale_factor, static_cast<float>(std::max(0, kp.octave)));
-    bool touches = false;
-    for (int k = 0; k < 16 && !touches; ++k)
-      touches = moving_at(static_cast<int>(std::lround(kp.pt.x + scale * kCircle[k][0])),
-                          static_cast<int>(std::lround(kp.pt.y + scale * kCircle[k][1])));
-    out.boundary[i] = touches;
+    out.boundary[i] = fast_circle_touches(kp, fast_circle_scale(kp, scale_factor), moving_at);
   }
   return out;
 }

@@ -30,15 +30,6 @@ namespace {
 
 const size_t kMaxQueued = 6;
 
-void write_png(const std::string& path, const cv::Mat& img, PngKind kind, int compression,
-               size_t& bytes) {
-  const std::vector<unsigned char> buf = encode_png(img, kind, compression);
-  std::ofstream out(path, std::ios::binary);
-  out.write(reinterpret_cast<const char*>(buf.data()), static_cast<std::streamsize>(buf.size()));
-  if (!out) fail(path, "write failed (disk full?)");
-  bytes += buf.size();
-}
-
 }  // namespace
 
 const OutputKind& simulator_output_kind() {
@@ -166,12 +157,12 @@ void DatasetWriter::write_job(Job& job, WriterTimings& timings) {
   auto t1 = std::chrono::steady_clock::now();
   const fs::path root = dir_->path();
   const int level = options_.png_compression;
-  write_png((root / "rgb" / (job.stamp_rgb + ".png")).string(), job.frame.bgr, PngKind::kColor,
-            level < 0 ? 0 : level, timings.bytes);
-  write_png((root / "depth" / (job.stamp_depth + ".png")).string(), depth16, PngKind::kDepth,
-            level < 0 ? 1 : level, timings.bytes);
-  write_png((root / "labels" / (job.stamp_rgb + ".png")).string(), job.frame.instance,
-            PngKind::kLabels, level < 0 ? 1 : level, timings.bytes);
+  timings.bytes += write_png((root / "rgb" / (job.stamp_rgb + ".png")).string(), job.frame.bgr,
+                             PngKind::kColor, level < 0 ? 0 : level);
+  timings.bytes += write_png((root / "depth" / (job.stamp_depth + ".png")).string(), depth16,
+                             PngKind::kDepth, level < 0 ? 1 : level);
+  timings.bytes += write_png((root / "labels" / (job.stamp_rgb + ".png")).string(),
+                             job.frame.instance, PngKind::kLabels, level < 0 ? 1 : level);
   auto t2 = std::chrono::steady_clock::now();
   timings.sensor_ms += std::chrono::duration<double, std::milli>(t1 - t0).count();
   timings.encode_write_ms += std::chrono::duration<double, std::milli>(t2 - t1).count();

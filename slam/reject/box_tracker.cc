@@ -3,13 +3,9 @@
 #include <algorithm>
 #include <tuple>
 
-namespace depot::slam {
+#include "slam/detect/nms.h"
 
-float box_iou(const cv::Rect2f& a, const cv::Rect2f& b) {
-  const float inter = (a & b).area();
-  const float uni = a.area() + b.area() - inter;
-  return uni > 0 ? inter / uni : 0.0f;
-}
+namespace depot::slam {
 
 namespace {
 
@@ -33,8 +29,8 @@ std::vector<TrackedBox> BoxTracker::update(const std::vector<Detection>& detecti
   for (size_t d = 0; d < detections.size(); ++d)
     for (size_t t = 0; t < tracks_.size(); ++t) {
       if (detections[d].class_name != tracks_[t].detection.class_name) continue;
-      const float iou = box_iou(detections[d].box, tracks_[t].detection.box);
-      if (iou >= params_.min_iou) pairs.emplace_back(iou, d, t);
+      const float overlap = iou(detections[d].box, tracks_[t].detection.box);
+      if (overlap >= params_.min_iou) pairs.emplace_back(overlap, d, t);
     }
   std::sort(pairs.begin(), pairs.end(),
             [](const auto& a, const auto& b) { return std::get<0>(a) > std::get<0>(b); });

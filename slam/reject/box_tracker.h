@@ -61,6 +61,4 @@ class BoxTracker {
   int next_id_ = 1;
 };
 
-float box_iou(const cv::Rect2f& a, const cv::Rect2f& b);
-
 }  // namespace depot::slam

@@ -6,11 +6,9 @@
 #include <Eigen/Geometry>
 #include <opencv2/imgproc.hpp>
 
-namespace depot::slam {
+#include "common/fast_circle.h"
 
-const int kFastCircle[16][2] = {{0, 3},  {1, 3},  {2, 2},  {3, 1},   {3, 0},   {3, -1},
-                                {2, -2}, {1, -3}, {0, -3}, {-1, -3}, {-2, -2}, {-3, -1},
-                                {-3, 0}, {-3, 1}, {-2, 2}, {-1, 3}};
+namespace depot::slam {
 
 bool ObjectMask::on_object(int x, int y) const {
   if (!valid() || !region.contains(cv::Point(x, y))) return false;
@@ -20,8 +18,7 @@ bool ObjectMask::on_object(int x, int y) const {
 bool ObjectMask::touches(const cv::KeyPoint& kp, float scale_factor, float reach) const {
   if (!valid()) return false;
   // Quick rejection: the circle's bounding square misses the region.
-  float scale = reach;
-  for (int o = 0; o < kp.octave; ++o) scale *= scale_factor;
+  const float scale = fast_circle_scale(kp, scale_factor, reach);
   const float r = 3 * scale + 1;
   if (kp.pt.x + r < region.x || kp.pt.y + r < region.y || kp.pt.x - r >= region.br().x ||
       kp.pt.y - r >= region.br().y)
@@ -29,11 +26,7 @@ bool ObjectMask::touches(const cv::KeyPoint& kp, float scale_factor, float reach
   if (on_object(static_cast<int>(std::lround(kp.pt.x)), static_cast<int>(std::lround(kp.pt.y))))
     return true;
   if (reach <= 0) return false;
-  for (const auto& d : kFastCircle)
-    if (on_object(static_cast<int>(std::lround(kp.pt.x + scale * d[0])),
-                  static_cast<int>(std::lround(kp.pt.y + scale * d[1]))))
-      return true;
-  return false;
+  return fast_circle_touches(kp, scale, [this](int x, int y) { return on_object(x, y); });
 }
 
 cv::Rect2f ObjectMask::bounds() const {
@@ -97,17 +90,13 @@ float object_depth(const cv::Mat& depth, const cv::Rect& box, const ObjectMaskPa
 // be the object itself, e.g. a torso; a floor runs on behind the object).
 cv::Mat support_plane(const cv::Mat& depth, const cv::Rect& region, int s, int gw, int gh,
                       const PinholeCamera& camera, const ObjectMaskParams& p) {
-  struct Sample {
-    int gx, gy;
-    Eigen::Vector3d x;
-  };
-  std::vector<Sample> samples;
+  std::vector<Eigen::Vector3d> samples;
   const int step = std::max(1, 8 / s);            // plane fitting on every 8th pixel
   for (int gy = gh * 2 / 3; gy < gh; gy += step)  // the bottom third: where a support is
     for (int gx = 0; gx < gw; gx += step) {
       const int u = region.x + gx * s, v = region.y + gy * s;
       const float d = depth.at<float>(v, u);
-      if (d > 0 && std::isfinite(d)) samples.push_back({gx, gy, camera.unproject(u, v, d)});
+      if (d > 0 && std::isfinite(d)) samples.push_back(camera.unproject(u, v, d));
     }
   if (samples.size() < 50) return {};
   cv::RNG rng(0x5eed);  // fixed: the same frame segments the same way
@@ -116,21 +105,22 @@ cv::Mat support_plane(const cv::Mat& depth, const cv::Rect& region, int s, int g
   double best_c = 0;
   size_t best_inliers = 0;
   for (int it = 0; it < p.plane_iterations; ++it) {
-    const auto& a = samples[rng.uniform(0, static_cast<int>(samples.size()))].x;
-    const auto& b = samples[rng.uniform(0, static_cast<int>(samples.size()))].x;
-    const auto& c = samples[rng.uniform(0, static_cast<int>(samples.size()))].x;
+    const auto& a = samples[rng.uniform(0, static_cast<int>(samples.size()))];
+    const auto& b = samples[rng.uniform(0, static_cast<int>(samples.size()))];
+    const auto& c = samples[rng.uniform(0, static_cast<int>(samples.size()))];
     Eigen::Vector3d n = (b - a).cross(c - a);
     if (n.norm() < 1e-9) continue;
     n.normalize();
     const double off = -n.dot(a);
     size_t inliers = 0;
-    for (const Sample& q : samples) inliers += std::fabs(n.dot(q.x) + off) <= tolerance(q.x.z());
+    for (const Eigen::Vector3d& q : samples)
+      inliers += std::fabs(n.dot(q) + off) <= tolerance(q.z());
     if (inliers > best_inliers) best_inliers = inliers, best_n = n, best_c = off;
   }
   if (best_inliers < p.plane_min_share * samples.size()) return {};
   std::vector<double> z;
-  for (const Sample& q : samples)
-    if (std::fabs(best_n.dot(q.x) + best_c) <= tolerance(q.x.z())) z.push_back(q.x.z());
+  for (const Eigen::Vector3d& q : samples)
+    if (std::fabs(best_n.dot(q) + best_c) <= tolerance(q.z())) z.push_back(q.z());
   std::sort(z.begin(), z.end());
   if (z[z.size() * 9 / 10] - z[z.size() / 10] < p.plane_min_depth_range) return {};
   // n . X(u, v, d) + c = d (n_x (u - cx) / fx + n_y (v - cy) / fy + n_z) + c:
@@ -195,7 +185,6 @@ ObjectMask with_segmentation(const ObjectMask& from_depth, const cv::Mat& segmen
 ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box, const ObjectMaskParams& p,
                           const PinholeCamera* camera, float known_depth) {
   ObjectMask out;
-  const cv::Rect image(0, 0, depth.cols, depth.rows);
   out.region = search_region(box, depth.size(), p.grow);
   const cv::Rect inner = search_region(box, depth.size(), 0.0f);
   if (out.region.empty() || inner.empty()) return out;

@@ -1,20 +1,21 @@
 #pragma once
-// An object's pixels inside its detection box, segmented from depth: the
-// box's object is the nearest strong peak of the box's depth histogram (a
-// detected object stands in front of what else its box holds) unless its
-// region does not reach the box's top (then it is an occluder standing
-// before the object, e.g. a monitor before a seated person, and the object
-// is the one at the depth of the box's top); the box's
+// An object's pixels inside its detection box, segmented from depth. The
+// object's depth is the nearest strong peak of the box's depth histogram (a
+// detected object stands in front of what else its box holds); the box's
 // pixels at that depth seed a region grown over neighbouring pixels whose
 // depth changes smoothly (a depth edge stops it) and stays within the
 // object's depth extent. The floor an object stands on meets it without a
 // depth edge, so with the camera's intrinsics the dominant plane of the
-// search region (RANSAC on its 3D points) is taken out of the region first
-// when it is a support surface: large, and receding in depth well beyond an
-// object's extent (a plane at one depth may be the object itself, e.g. a
-// torso). Pixels of the box at other depths are the background seen around
-// the object; pixels without depth are undecided. Boxes from a detector are
-// jittered and scaled, so the search region is the box grown on each side.
+// search region's bottom third (RANSAC on its 3D points) is taken out first
+// when it is a support surface: large, receding in depth, and reaching the
+// region's bottom edge (a plane at one depth may be the object itself, e.g.
+// a torso). Optionally (top_min_share > 0) a nearest object that does not
+// reach the box's top is taken for an occluder standing before the object
+// (a monitor before a seated person), and the object is the one at the depth
+// of the box's top. Pixels of the box at other depths are the background
+// seen around the object; pixels without depth are on no object. Boxes from
+// a detector are jittered and scaled, so the search region is the box grown
+// on each side.
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -80,8 +81,5 @@ cv::Rect search_region(const cv::Rect2f& box, cv::Size image, float grow);
 // (union = true) those and the depth mask's together.
 ObjectMask with_segmentation(const ObjectMask& from_depth, const cv::Mat& segmentation,
                              const cv::Rect2f& box, const ObjectMaskParams& params, bool union_);
-
-// FAST-9's Bresenham circle of radius 3: 16 (dx, dy) offsets.
-extern const int kFastCircle[16][2];
 
 }  // namespace depot::slam

@@ -24,23 +24,11 @@ RejectionMode parse_rejection_mode(const std::string& name) {
   fail("--mode", "unknown mode '" + name + "' (expected orb, orb+yolo, orb+lk, full, masked)");
 }
 
-RejectionParams::PersonMask parse_person_mask(const std::string& name) {
+RejectionParams::PersonMask parse_person_mask(const std::string& name, const std::string& where) {
   if (name == "depth") return RejectionParams::PersonMask::kDepth;
   if (name == "segmentation") return RejectionParams::PersonMask::kSegmentation;
   if (name == "both") return RejectionParams::PersonMask::kBoth;
-  fail("--person-mask", "unknown source '" + name + "' (expected depth, segmentation, both)");
-}
-
-const char* person_mask_name(RejectionParams::PersonMask source) {
-  switch (source) {
-    case RejectionParams::PersonMask::kDepth:
-      return "depth";
-    case RejectionParams::PersonMask::kSegmentation:
-      return "segmentation";
-    case RejectionParams::PersonMask::kBoth:
-      return "both";
-  }
-  return "depth";
+  fail(where, "unknown person mask source '" + name + "' (expected depth, segmentation, both)");
 }
 
 const char* rejection_mode_name(RejectionMode m) {
@@ -151,7 +139,9 @@ void RejectionFilter::filter(const FrameImages& images, const std::vector<cv::Ke
       filter_full(images, keypoints, keep);
       break;
     case RejectionMode::kMasked: {
-      const std::vector<float> depth = keypoint_depths(images.depth, keypoints);
+      std::vector<float> depth;  // only the camera-motion flow test reads it
+      if (params_.ego_motion_flow && images.camera)
+        depth = keypoint_depths(images.depth, keypoints);
       sets_ = masked_sets(images, keypoints);
       decide_sets(images, keypoints, depth, keep);
       break;

@@ -10,12 +10,12 @@
 //            across frames (box_tracker.h: a missed detection is bridged for
 //            a few frames) and each is segmented from depth (object_mask.h;
 //            person boxes optionally with a person segmenter). A keypoint
-//            whose centre or FAST circle touches a dynamic object's mask
-//            goes to Z, a potentially dynamic one's to Q; a keypoint in the
-//            grown box without depth is undecided and goes to Q (the flow
-//            test); a keypoint in the box at another depth is background and
-//            goes to P. A box whose object has no depth at all falls back to
-//            the paper's rule (Z or Q whole). Q then as in full.
+//            whose centre is on a dynamic object's mask, or whose FAST
+//            circle (radius scaled by mask_reach) touches it, goes to Z; on
+//            a potentially dynamic one's, to Q; every other keypoint (the
+//            background seen in the box, pixels without depth) to P. A box
+//            whose object has no depth at all falls back to the paper's rule
+//            (Z or Q whole). Q then as in full.
 #include <memory>
 #include <string>
 #include <vector>
@@ -73,8 +73,9 @@ struct RejectionParams {
   enum class PersonMask { kDepth, kSegmentation, kBoth };
   PersonMask person_mask = PersonMask::kDepth;
 };
-RejectionParams::PersonMask parse_person_mask(const std::string& name);  // depth|segmentation|both
-const char* person_mask_name(RejectionParams::PersonMask source);
+// depth | segmentation | both; Error("<where>: ...") otherwise.
+RejectionParams::PersonMask parse_person_mask(const std::string& name,
+                                              const std::string& where = "--person-mask");
 
 // Per-frame statistics.
 struct RejectionStats {
@@ -86,7 +87,7 @@ struct RejectionStats {
   cv::Point2f mean_flow{0, 0};
   float z_threshold = 0;
   double wait_ms = 0;    // how long tracking waited for the detector
-  double detect_ms = 0;  // the detector's own time (hidden by the thread when < extraction)
+  double detect_ms = 0;  // the detector's own time (hidden by the thread when it runs ahead)
   double flow_ms = 0;
   double filter_ms = 0;   // the whole rejection stage after detection
   int carried = 0;        // masked: boxes carried by the box tracker (missed detections)

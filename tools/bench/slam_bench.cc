@@ -69,6 +69,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1000.0))
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  const depot::slam::RejectionParams::PersonMask person_mask_source =
+      depot::slam::parse_person_mask(person_mask);
   const bool sync = mapping == "sync";
   std::string rendered;
   try {
@@ -106,7 +108,7 @@ int main(int argc, char** argv) {
       options.dataset = dataset;
       options.mode = run_mode;
       options.detector = detector_type;
-      options.person_mask = person_mask;
+      options.rejection.person_mask = person_mask_source;
       depot::runner::RejectionSetup rejection =
           depot::runner::make_rejection(options, settings.orb.scale_factor);
       depot::slam::RejectionFilter* filter = rejection.filter.get();
@@ -202,7 +204,7 @@ int main(int argc, char** argv) {
         options.sync = sync;
         options.quiet = true;
         options.rate_hz = rate_hz;
-        options.person_mask = person_mask;
+        options.rejection.person_mask = person_mask_source;
         options.run_ahead = run_ahead;
         return depot::runner::run_sequence(options);
       };

@@ -57,7 +57,8 @@ struct RunArgs {
 
 void run_slam(RunArgs& a, const CLI::App& cmd) {
   check_options_used_by_mode(a.options.mode, cmd);
-  if (cmd.count("--segmenter") && a.options.person_mask == "depth")
+  if (cmd.count("--segmenter") &&
+      a.options.rejection.person_mask == slam::RejectionParams::PersonMask::kDepth)
     fail("--segmenter", "has no effect with --person-mask depth (choose segmentation or both)");
   // Every output must be writable before a long run starts, not after it.
   for (const std::string* path :
@@ -125,18 +126,20 @@ void add_rejection_options(CLI::App* cmd, runner::RunOptions& o) {
       "Change a simulated-detector key, e.g. --detector-set miss_rate=0.2 (repeatable)");
   cmd->add_option("--settings", o.settings, "Settings YAML")
       ->default_str("the dataset's calibration.yaml");
-  cmd->add_option("--background-margin", o.background_depth_margin,
+  cmd->add_option("--background-margin", o.rejection.background_depth_margin,
                   "Our extension of full: boxed points without depth, or this far (m) behind a "
                   "dynamic box's object, are background and go to P (0 = the paper exactly)")
       ->check(CLI::Range(0.0, 10.0));
   cmd->add_flag(
-      "--ego-flow", o.ego_motion_flow,
+      "--ego-flow", o.rejection.ego_motion_flow,
       "Our extension of full and masked: test flow against the camera's motion fitted to P (by "
       "PnP on depth) instead of P's mean flow");
-  cmd->add_flag("--test-static", o.test_static_points,
+  cmd->add_flag("--test-static", o.rejection.test_static_points,
                 "Our extension of full and masked: apply the flow test to P's points too");
-  cmd->add_option("--person-mask", o.person_mask,
-                  "masked: person masks from depth, a person segmenter, or both")
+  cmd->add_option_function<std::string>(
+         "--person-mask",
+         [&o](const std::string& v) { o.rejection.person_mask = slam::parse_person_mask(v); },
+         "masked: person masks from depth, a person segmenter, or both")
       ->check(CLI::IsMember({"depth", "segmentation", "both"}))
       ->default_str("depth");
   cmd->add_option("--segmenter", o.segmenter, "masked: person segmenter YAML")

@@ -130,36 +130,35 @@ void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const s
     if (setting.key == "background_margin") {
       const float m = value.as<float>();
       if (!(m >= 0.0f && m <= 10.0f)) fail(where, "background_margin must be in [0, 10] m");
-      o.background_depth_margin = m;
+      o.rejection.background_depth_margin = m;
     } else if (setting.key == "ego_flow") {
-      o.ego_motion_flow = value.as<bool>();
+      o.rejection.ego_motion_flow = value.as<bool>();
     } else if (setting.key == "test_static") {
-      o.test_static_points = value.as<bool>();
+      o.rejection.test_static_points = value.as<bool>();
     } else if (setting.key == "person_mask") {
-      slam::parse_person_mask(setting.value);
-      o.person_mask = setting.value;
+      o.rejection.person_mask = slam::parse_person_mask(setting.value, where);
     } else if (setting.key == "tracking.max_missed") {
       const int n = value.as<int>();
       if (n < 0 || n > 1000) fail(where, "tracking.max_missed must be in [0, 1000] frames");
-      o.tracking.max_missed = n;
+      o.rejection.tracking.max_missed = n;
     } else if (setting.key == "mask.plane") {
-      o.mask.remove_plane = value.as<bool>();
+      o.rejection.mask.remove_plane = value.as<bool>();
     } else if (setting.key == "mask.stride") {
       const int n = value.as<int>();
       if (n < 1 || n > 16) fail(where, "mask.stride must be in [1, 16] px");
-      o.mask.stride = n;
+      o.rejection.mask.stride = n;
     } else {
       struct Key {
         const char* name;
         float* field;
         float lo, hi;
-      } keys[] = {{"mask.grow", &o.mask.grow, 0.0f, 2.0f},
-                  {"mask.extent", &o.mask.extent_m, 0.01f, 10.0f},
-                  {"mask.edge_step", &o.mask.edge_step_m, 0.0f, 10.0f},
-                  {"mask.edge_step_per_m", &o.mask.edge_step_per_m, 0.0f, 1.0f},
-                  {"mask.reach", &o.mask_reach, 0.0f, 3.0f},
-                  {"mask.top_min_share", &o.mask.top_min_share, 0.0f, 1.0f},
-                  {"tracking.min_iou", &o.tracking.min_iou, 0.0f, 1.0f}};
+      } keys[] = {{"mask.grow", &o.rejection.mask.grow, 0.0f, 2.0f},
+                  {"mask.extent", &o.rejection.mask.extent_m, 0.01f, 10.0f},
+                  {"mask.edge_step", &o.rejection.mask.edge_step_m, 0.0f, 10.0f},
+                  {"mask.edge_step_per_m", &o.rejection.mask.edge_step_per_m, 0.0f, 1.0f},
+                  {"mask.reach", &o.rejection.mask_reach, 0.0f, 3.0f},
+                  {"mask.top_min_share", &o.rejection.mask.top_min_share, 0.0f, 1.0f},
+                  {"tracking.min_iou", &o.rejection.tracking.min_iou, 0.0f, 1.0f}};
       for (const Key& k : keys) {
         if (setting.key != k.name) continue;
         const float v = value.as<float>();
@@ -169,11 +168,11 @@ void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const s
         *k.field = v;
         return;
       }
-      fail(where, "unknown rejection setting '" + setting.key +
-                      "' (expected background_margin, ego_flow, test_static, person_mask, "
-                      "mask.grow, mask.extent, mask.edge_step, mask.edge_step_per_m, mask.stride, "
-                      "mask.reach, "
-                      "tracking.max_missed, tracking.min_iou)");
+      std::string known =
+          "background_margin, ego_flow, test_static, person_mask, tracking.max_missed, "
+          "mask.plane, mask.stride";
+      for (const Key& k : keys) known += std::string(", ") + k.name;
+      fail(where, "unknown rejection setting '" + setting.key + "' (expected " + known + ")");
     }
   } catch (const YAML::Exception&) {
     fail(where, "bad value '" + setting.value + "' for rejection setting '" + setting.key + "'");
@@ -195,15 +194,8 @@ RejectionSetup make_rejection(const RunOptions& o, float scale_factor) {
   slam::AprioriClasses classes = slam::AprioriClasses::load(table_path);
   if (setup.detector && !setup.detector->class_names().empty())
     classes.check_against(setup.detector->class_names(), table_path, setup.detector->name());
-  slam::RejectionParams params;
-  params.background_depth_margin = o.background_depth_margin;
-  params.ego_motion_flow = o.ego_motion_flow;
-  params.test_static_points = o.test_static_points;
+  slam::RejectionParams params = o.rejection;
   params.scale_factor = scale_factor;
-  params.person_mask = slam::parse_person_mask(o.person_mask);
-  params.mask = o.mask;
-  params.mask_reach = o.mask_reach;
-  params.tracking = o.tracking;
   setup.filter =
       std::make_unique<slam::RejectionFilter>(mode, classes, setup.detector.get(), params);
   if (mode == slam::RejectionMode::kMasked &&
@@ -349,12 +341,8 @@ RunSummary run_sequence(const RunOptions& o) {
     if (overlays && i % o.overlays_every == 0) {
       char name[32];
       std::snprintf(name, sizeof(name), "frames/%06zu.png", i);
-      const std::vector<unsigned char> png = encode_png(
-          draw_rejection_overlay(bgr, *filter, truth ? &labels : nullptr), PngKind::kColor);
-      std::ofstream file((fs::path(overlays->path()) / name).string(), std::ios::binary);
-      file.write(reinterpret_cast<const char*>(png.data()),
-                 static_cast<std::streamsize>(png.size()));
-      if (!file) fail(o.overlays, std::string("cannot write ") + name);
+      write_png((fs::path(overlays->path()) / name).string(),
+                draw_rejection_overlay(bgr, *filter, truth ? &labels : nullptr), PngKind::kColor);
       char row[96];
       std::snprintf(row, sizeof(row), "%zu %.6f %s\n", i, t, name);
       *overlay_index << row;

@@ -34,16 +34,11 @@ struct RunOptions {
   std::string keypoints_csv;  // per-keypoint sets, decisions, depth and truth
   std::string overlays;       // folder of per-frame rejection pictures (rejection_overlay.h)
   size_t overlays_every = 1;  // a picture of every n-th frame
-  float background_depth_margin = 0.0f;  // our extension of `full` (0 = paper)
-  bool ego_motion_flow = false;          // our extension: flow test against camera motion
-  bool test_static_points = false;       // our extension: flow test on P too
-  // masked mode: person masks from depth, a segmenter, or both; the segmenter YAML
-  // (default scenes/segmenters/selfie.yaml when the source needs one).
-  std::string person_mask = "depth";
-  std::string segmenter;
-  slam::ObjectMaskParams mask;      // masked: depth segmentation
-  float mask_reach = 0.5f;          // masked: RejectionParams::mask_reach
-  slam::BoxTrackerParams tracking;  // masked: missed-detection recovery
+  // The rejection's parameters (slam/reject/rejection_filter.h): our
+  // extensions of full, and masked's masks, box tracking and person masks;
+  // scale_factor is set from the settings by make_rejection.
+  slam::RejectionParams rejection;
+  std::string segmenter;  // person segmenter YAML (default scenes/segmenters/selfie.yaml)
   // The input: an emulated camera whose frame i arrives at t0 + i / rate_hz
   // (0 = every frame is there at once: as fast as possible).
   double rate_hz = 0;
