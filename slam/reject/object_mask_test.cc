@@ -63,6 +63,21 @@ TEST(ObjectMask, FindsTheObjectWhenTheBoxCentreIsBackground) {
   EXPECT_FALSE(m.on_object(240, 100));
 }
 
+TEST(ObjectMask, ADepthEdgeStopsTheRegion) {
+  // A cart 0.35 m behind the person (within the object's depth extent) that
+  // touches it in the image: the depth edge between them keeps it out.
+  cv::Mat depth(240, 320, CV_32F, cv::Scalar(4.0f));
+  for (int y = 40; y < 200; ++y)
+    for (int x = 130; x < 190; ++x) depth.at<float>(y, x) = 1.5f;
+  for (int y = 120; y < 200; ++y)
+    for (int x = 190; x < 230; ++x) depth.at<float>(y, x) = 1.85f;
+  const ObjectMask m = segment_object(depth, cv::Rect2f(120, 30, 80, 180));
+  ASSERT_TRUE(m.valid());
+  EXPECT_TRUE(m.on_object(160, 150));
+  EXPECT_FALSE(m.on_object(195, 150)) << "the cart inside the grown box";
+  EXPECT_FALSE(m.on_object(200, 190));
+}
+
 TEST(ObjectMask, FastCircleContact) {
   const ObjectMask m = segment_object(scene_depth(), cv::Rect2f(70, 30, 140, 180));
   ASSERT_TRUE(m.valid());
