@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages depot-slam needs, only those missing.
 # Idempotent; uses sudo when not root. Nothing is downloaded outside apt.
-# chromium renders the HTML report in a headless screenshot test.
+# chromium renders the HTML report in a headless screenshot test; opencv-doc
+# ships the sample photographs the default vocabulary is trained on.
 set -euo pipefail
 
 packages=(
@@ -11,7 +12,7 @@ packages=(
   libopencv-dev libpng-dev zlib1g-dev libeigen3-dev libceres-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
-  chromium
+  chromium opencv-doc
 )
 
 missing=()

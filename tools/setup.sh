@@ -10,7 +10,7 @@ cd "$here"
 bash tools/require-shared-data.sh
 bash tools/install-deps.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDEPOT_BUILD_TESTS=ON >/dev/null
-cmake --build build -j"$(nproc)" --target depot
+cmake --build build -j"$(nproc)" --target depot depot_vocabulary
 
 depot=./build/tools/depot/depot
 scenario="${1:-depot_walking_xyz}"

@@ -5,6 +5,7 @@
 
 #include "common/pose.h"
 #include "slam/data/features.h"
+#include "slam/place/bow_vector.h"
 
 namespace depot::slam {
 
@@ -15,6 +16,8 @@ struct Frame {
   long id = 0;
   double timestamp = 0;
   Features features;
+  BowVector bow;  // empty until needed (relocalisation)
+  FeatureVector bow_features;
   std::vector<MapPoint*> map_points;  // per keypoint, nullptr when unmatched
   std::vector<bool> outlier;          // per keypoint, set by pose optimisation
   Pose T_cw = Pose::Identity();

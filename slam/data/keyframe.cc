@@ -11,6 +11,8 @@ KeyFrame::KeyFrame(long id_, const Frame& f)
       frame_id(f.id),
       timestamp(f.timestamp),
       features(f.features),
+      bow(f.bow),
+      bow_features(f.bow_features),
       map_points(f.map_points),
       T_cw(f.T_cw) {}
 
@@ -96,7 +98,7 @@ int KeyFrame::weight(KeyFrame* kf) const {
 }
 
 void KeyFrame::set_bad() {
-  if (id == 0) return;
+  if (id == 0 || !loop_edges.empty()) return;
   for (auto& [kf, w] : connections_) kf->erase_connection(this);
   for (size_t i = 0; i < map_points.size(); ++i)
     if (map_points[i]) map_points[i]->erase_observation(this);

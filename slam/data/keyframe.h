@@ -9,6 +9,7 @@
 #include "slam/data/by_id.h"
 #include "slam/data/features.h"
 #include "slam/data/frame.h"
+#include "slam/place/bow_vector.h"
 
 namespace depot::slam {
 
@@ -22,10 +23,17 @@ class KeyFrame {
   long frame_id;
   double timestamp;
   Features features;
+  // Bag of words and direct index (KeyFrameDatabase::describe), set by
+  // local mapping before the keyframe enters the database; fixed after.
+  BowVector bow;
+  FeatureVector bow_features;
   std::vector<MapPoint*> map_points;
   Pose T_cw;
   Pose T_cp = Pose::Identity();  // relative to the parent, fixed when set bad
   bool bad = false;
+  // Keyframes this one closed a loop with (loop closing); such keyframes are
+  // never culled, so the essential graph keeps the loop.
+  std::set<KeyFrame*, ById> loop_edges;
   // Markers that avoid sets in hot loops: the id of the keyframe/frame whose
   // processing last visited this keyframe.
   long local_ba_for = -1, fixed_ba_for = -1, track_local_for = -1, fuse_target_for = -1;

@@ -32,6 +32,10 @@ class MapPoint {
   long local_map_for = -1;    // frame whose local map already holds the point
   long fuse_candidate_for = -1;
   long local_ba_for = -1;
+  // Loop correction: the keyframe whose correction moved the point, and the
+  // one it moved with (its pose change then moves the point again).
+  long loop_corrected_for = -1;
+  KeyFrame* loop_reference = nullptr;
 
   void add_observation(KeyFrame* kf, size_t index);
   // Removes an observation; the point turns bad when fewer than 2 remain.

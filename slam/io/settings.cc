@@ -3,7 +3,9 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <filesystem>
 
+#include "common/config_path.h"
 #include "common/error.h"
 #include "common/image_size.h"
 #include "common/yaml_file.h"
@@ -63,6 +65,32 @@ SlamSettings load_settings(const std::string& path, const SlamSettings& defaults
       read<int>(tr, "max_frames_between_keyframes", s.tracker.max_frames_between_kf, path, 1, 1000);
   s.tracker.min_init_points =
       read<int>(tr, "min_init_points", s.tracker.min_init_points, path, 10, 10000);
+  const YAML::Node places = root["place_recognition"];
+  if (places && places["vocabulary"]) {
+    try {
+      s.vocabulary = resolve_config_path(places["vocabulary"].as<std::string>(),
+                                         std::filesystem::path(path).parent_path().string());
+    } catch (const YAML::Exception&) {
+      fail(path + ":" + std::to_string(places["vocabulary"].Mark().line + 1),
+           "bad value for 'vocabulary' (a file path)");
+    }
+  }
+  s.tracker.relocalisation_candidates = read<int>(places, "relocalisation_candidates",
+                                                  s.tracker.relocalisation_candidates, path, 1, 1000);
+  const YAML::Node loops = root["loop_closing"];
+  if (loops && loops["enabled"]) {
+    try {
+      s.loop_closing = loops["enabled"].as<bool>();
+    } catch (const YAML::Exception&) {
+      fail(path + ":" + std::to_string(loops["enabled"].Mark().line + 1),
+           "bad value for 'enabled' (true or false)");
+    }
+  }
+  LoopCloserParams& lc = s.loop_closer;
+  lc.consistency = read<int>(loops, "consistency", lc.consistency, path, 1, 100);
+  lc.min_loop_matches = read<int>(loops, "min_loop_matches", lc.min_loop_matches, path, 10, 10000);
+  lc.keyframes_between_loops =
+      read<int>(loops, "keyframes_between_loops", lc.keyframes_between_loops, path, 1, 100000);
   const YAML::Node mapping = root["mapping"];
   if (mapping && mapping["threaded"]) s.threaded_mapping = mapping["threaded"].as<bool>();
   return s;

@@ -7,6 +7,7 @@
 
 #include "slam/camera/pinhole_camera.h"
 #include "slam/feature/orb_extractor.h"
+#include "slam/loop/loop_closer.h"
 #include "slam/track/tracker.h"
 
 namespace depot::slam {
@@ -16,6 +17,13 @@ struct SlamSettings {
   OrbParams orb;
   TrackerParams tracker;
   bool threaded_mapping = true;
+  // The place-recognition vocabulary (slam/place/vocabulary_file.h); empty:
+  // default_vocabulary_path(). YAML: place_recognition: {vocabulary: FILE,
+  // relocalisation_candidates: N}.
+  std::string vocabulary;
+  // Loop closing (YAML loop_closing: {enabled, min_loop_matches, ...}).
+  bool loop_closing = true;
+  LoopCloserParams loop_closer;
 };
 
 // Reads `path`; keys not present keep their defaults. Every problem throws

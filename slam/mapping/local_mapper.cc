@@ -5,10 +5,12 @@
 
 #include "slam/match/orb_matcher.h"
 #include "slam/optimize/optimizer.h"
+#include "slam/place/keyframe_database.h"
 
 namespace depot::slam {
 
-LocalMapper::LocalMapper(Map& map, bool threaded) : map_(map), threaded_(threaded) {
+LocalMapper::LocalMapper(Map& map, bool threaded, KeyFrameDatabase* places)
+    : map_(map), threaded_(threaded), places_(places) {
   if (threaded_) thread_ = std::thread([this] { thread_main(); });
 }
 
@@ -69,6 +71,23 @@ void LocalMapper::reset() {
   recent_points_.clear();
 }
 
+void LocalMapper::pause() {
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    paused_ = true;
+  }
+  abort_ba_ = true;
+  while (busy_) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+}
+
+void LocalMapper::resume() {
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    paused_ = false;
+  }
+  cv_.notify_one();
+}
+
 void LocalMapper::stop() {
   if (!threaded_ || !thread_.joinable()) return;
   {
@@ -84,7 +103,7 @@ void LocalMapper::thread_main() {
     KeyFrame* kf = nullptr;
     {
       std::unique_lock<std::mutex> lock(queue_mutex_);
-      cv_.wait(lock, [&] { return stop_ || !queue_.empty(); });
+      cv_.wait(lock, [&] { return stop_ || (!paused_ && !queue_.empty()); });
       if (queue_.empty()) return;  // stop requested and nothing left
       kf = queue_.front();
       queue_.pop_front();
@@ -97,9 +116,12 @@ void LocalMapper::thread_main() {
 }
 
 void LocalMapper::process(KeyFrame* kf) {
+  // The bag of words reads only the keyframe's own descriptors: no lock.
+  if (places_) places_->describe(*kf);
   {
     std::lock_guard<std::mutex> lock(map_.mutex());
     process_new_keyframe(kf);
+    if (places_ && !kf->bad) places_->add(kf);
     cull_map_points(kf);
     create_new_map_points(kf);
     if (queued() == 0) search_in_neighbors(kf);
@@ -115,6 +137,7 @@ void LocalMapper::process(KeyFrame* kf) {
     std::lock_guard<std::mutex> lock(map_.mutex());
     if (!kf->bad) cull_keyframes(kf);
   }
+  if (next_ && !kf->bad) next_->insert_keyframe(kf);
   std::lock_guard<std::mutex> lock(queue_mutex_);
   stats_.keyframes++;
 }
@@ -313,7 +336,9 @@ void LocalMapper::cull_keyframes(KeyFrame* kf) {
     }
     if (total > 0 && redundant > 0.9 * total) {
       n->set_bad();
+      if (!n->bad) continue;  // kept: it holds a loop edge
       map_.erase_keyframe(n);
+      if (places_) places_->erase(n);
       std::lock_guard<std::mutex> lock(queue_mutex_);
       stats_.keyframes_culled++;
     }

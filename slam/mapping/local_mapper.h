@@ -2,7 +2,7 @@
 // Local mapping (ORB-SLAM2's LocalMapping): takes keyframes from tracking,
 // links their map points, culls weak new points, triangulates new points
 // with neighbour keyframes, fuses duplicates, runs local bundle adjustment
-// and removes redundant keyframes. Runs in its own thread, or synchronously
+// and removes redundant keyframes; keeps the place-recognition index. Runs in its own thread, or synchronously
 // (run_pending) for reproducible runs.
 #include <atomic>
 #include <condition_variable>
@@ -16,6 +16,8 @@
 
 namespace depot::slam {
 
+class KeyFrameDatabase;
+
 struct LocalMapperStats {
   long keyframes = 0;
   long points_created = 0;
@@ -26,7 +28,9 @@ struct LocalMapperStats {
 
 class LocalMapper : public KeyFrameSink {
  public:
-  LocalMapper(Map& map, bool threaded);
+  // `places` (may be null) receives each processed keyframe with its bag of
+  // words, and loses culled ones.
+  LocalMapper(Map& map, bool threaded, KeyFrameDatabase* places = nullptr);
   ~LocalMapper() override;
 
   void insert_keyframe(KeyFrame* kf) override;
@@ -41,6 +45,13 @@ class LocalMapper : public KeyFrameSink {
   void reset();
   // Threaded mode: finishes the queue and stops the thread.
   void stop();
+  // Holds the mapping thread between keyframes (a loop correction moves
+  // the map under it): returns once no keyframe is being processed; queued
+  // keyframes wait until resume().
+  void pause();
+  void resume();
+  // Receives every keyframe mapping has finished and kept (loop closing).
+  void set_next(KeyFrameSink* next) { next_ = next; }
   LocalMapperStats stats() const;
 
  private:
@@ -54,12 +65,15 @@ class LocalMapper : public KeyFrameSink {
 
   Map& map_;
   bool threaded_;
+  KeyFrameDatabase* places_;
   mutable std::mutex queue_mutex_;
   std::condition_variable cv_;
   std::deque<KeyFrame*> queue_;
   std::atomic<bool> busy_{false};
   std::atomic<bool> stop_{false};
   std::atomic<bool> abort_ba_{false};
+  bool paused_ = false;  // guarded by queue_mutex_
+  KeyFrameSink* next_ = nullptr;
   std::list<MapPoint*> recent_points_;
   LocalMapperStats stats_;
   std::thread thread_;

@@ -198,6 +198,55 @@ int match_by_descriptor(const KeyFrame& kf, const Frame& frame, std::vector<MapP
   return n;
 }
 
+int match_by_bow(const KeyFrame& kf, const Frame& frame, std::vector<MapPoint*>& matches,
+                 float ratio) {
+  matches.assign(frame.size(), nullptr);
+  RotationHistogram hist;
+  int n = 0;
+  auto ik = kf.bow_features.begin();
+  auto iff = frame.bow_features.begin();
+  while (ik != kf.bow_features.end() && iff != frame.bow_features.end()) {
+    if (ik->first < iff->first) {
+      ik = kf.bow_features.lower_bound(iff->first);
+      continue;
+    }
+    if (iff->first < ik->first) {
+      iff = frame.bow_features.lower_bound(ik->first);
+      continue;
+    }
+    for (size_t ki : ik->second) {
+      MapPoint* mp = kf.map_points[ki];
+      if (!mp || mp->bad) continue;
+      const uint8_t* d_kf = kf.features.descriptors.ptr<uint8_t>(static_cast<int>(ki));
+      int best = 256, second = 256;
+      size_t best_fi = 0;
+      for (size_t fi : iff->second) {
+        if (matches[fi]) continue;
+        const int d =
+            descriptor_distance(d_kf, frame.features.descriptors.ptr<uint8_t>(static_cast<int>(fi)));
+        if (d < best) {
+          second = best;
+          best = d, best_fi = fi;
+        } else if (d < second) {
+          second = d;
+        }
+      }
+      if (best > kMatchThLow || best >= ratio * second) continue;
+      matches[best_fi] = mp;
+      ++n;
+      hist.add(kf.features.keypoints[ki].angle, frame.features.keypoints[best_fi].angle, best_fi);
+    }
+    ++ik, ++iff;
+  }
+  for (size_t fi : hist.rejected()) {
+    if (matches[fi]) {
+      matches[fi] = nullptr;
+      --n;
+    }
+  }
+  return n;
+}
+
 int match_for_triangulation(const KeyFrame& kf1, const KeyFrame& kf2,
                             std::vector<std::pair<size_t, size_t>>& pairs) {
   pairs.clear();

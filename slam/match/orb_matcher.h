@@ -42,6 +42,13 @@ int match_local_points(Frame& frame, const std::vector<ProjectedPoint>& points,
 int match_by_descriptor(const KeyFrame& kf, const Frame& frame, std::vector<MapPoint*>& matches,
                         float ratio);
 
+// As match_by_descriptor, but a keyframe keypoint is compared only with
+// the frame's keypoints under the same vocabulary node (the direct indices
+// kf.bow_features and frame.bow_features, which must be set): ORB-SLAM2's
+// SearchByBoW, for relocalisation and loop closing.
+int match_by_bow(const KeyFrame& kf, const Frame& frame, std::vector<MapPoint*>& matches,
+                 float ratio);
+
 // Unmatched keypoint pairs of two keyframes that agree with the epipolar
 // geometry of their poses.
 int match_for_triangulation(const KeyFrame& kf1, const KeyFrame& kf2,

@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/error.h"
+#include "slam/place/vocabulary_file.h"
 
 namespace depot::slam {
 namespace {
@@ -35,11 +36,27 @@ System::System(const SlamSettings& settings, KeypointFilter* filter)
       filter_(filter),
       levels_(ScaleLevels::make(settings.orb.n_levels, settings.orb.scale_factor)),
       extractor_(settings.orb),
-      mapper_(map_, settings.threaded_mapping),
-      tracker_(map_, mapper_, settings.tracker) {}
+      places_(load_vocabulary_shared(settings.vocabulary.empty() ? default_vocabulary_path()
+                                                                 : settings.vocabulary)),
+      mapper_(map_, settings.threaded_mapping, &places_),
+      loop_closer_(map_, places_, mapper_, settings.threaded_mapping, settings.loop_closer),
+      tracker_(map_, mapper_, settings.tracker, &places_) {
+  if (settings.loop_closing) mapper_.set_next(&loop_closer_);
+}
 
 System::~System() {
   mapper_.stop();
+  loop_closer_.stop();
+}
+
+void System::check_workers() const {
+  if (std::exception_ptr e = loop_closer_.failure()) {
+    try {
+      std::rethrow_exception(e);
+    } catch (const std::exception& ex) {
+      fail("loop closing", ex.what());
+    }
+  }
 }
 
 void System::check_images(const cv::Mat& bgr, const cv::Mat& depth, long frame_id) const {
@@ -100,12 +117,18 @@ TrackResult System::track(const cv::Mat& bgr, const cv::Mat& depth, double times
   Frame frame(next_frame_id_++, timestamp,
               Features(std::move(keypoints), descriptors, depth, cam, &levels_));
   result.state = tracker_.track(std::move(frame), &result.stats);
-  if (!settings_.threaded_mapping) mapper_.run_pending();
+  if (!settings_.threaded_mapping) {
+    mapper_.run_pending();
+    loop_closer_.run_pending();
+  }
+  check_workers();
   if (tracker_.wants_reset()) {
     // Lost right after start: begin a new map (ORB-SLAM2 does the same).
     mapper_.reset();
+    loop_closer_.reset();
     std::lock_guard<std::mutex> lock(map_.mutex());
     map_.clear();
+    places_.clear();
     tracker_.reset();
     ++resets_;
   }
@@ -121,10 +144,13 @@ TrackResult System::track(const cv::Mat& bgr, const cv::Mat& depth, double times
 void System::finish() {
   if (settings_.threaded_mapping) {
     // Wait until the queue is empty and the mapper idle.
-    while (!mapper_.idle()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    while (!mapper_.idle() || !loop_closer_.idle())
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
   } else {
     mapper_.run_pending();
+    loop_closer_.run_pending();
   }
+  check_workers();
 }
 
 std::vector<StampedPose> System::trajectory() const {

@@ -1,6 +1,6 @@
 #pragma once
 // The SLAM system: feed (rgb, depth, timestamp), get the camera pose and
-// tracking state. Owns the ORB extractor, the optional keypoint filter (the
+// tracking state. Owns the ORB extractor, the place-recognition index, the optional keypoint filter (the
 // dynamic-rejection seam), the tracker, the map and local mapping.
 #include <deque>
 #include <memory>
@@ -12,7 +12,9 @@
 #include "slam/data/map.h"
 #include "slam/feature/orb_extractor.h"
 #include "slam/io/settings.h"
+#include "slam/loop/loop_closer.h"
 #include "slam/mapping/local_mapper.h"
+#include "slam/place/keyframe_database.h"
 #include "slam/track/keypoint_filter.h"
 #include "slam/track/tracker.h"
 
@@ -36,7 +38,8 @@ struct TrackResult {
 
 class System {
  public:
-  // `filter` may be null (plain ORB-SLAM2); it is not owned.
+  // `filter` may be null (plain ORB-SLAM2); it is not owned. Loads the
+  // settings' vocabulary (depot::Error naming the file when it cannot).
   explicit System(const SlamSettings& settings, KeypointFilter* filter = nullptr);
   ~System();
 
@@ -61,18 +64,23 @@ class System {
   size_t n_keyframes() const;
   size_t n_map_points() const;
   LocalMapperStats mapping_stats() const { return mapper_.stats(); }
+  std::vector<LoopClosure> loop_closures() const { return loop_closer_.closures(); }
   const SlamSettings& settings() const { return settings_; }
   int resets() const { return resets_; }
 
  private:
   void check_images(const cv::Mat& bgr, const cv::Mat& depth, long frame_id) const;
+  // Rethrows a worker thread's exception as one depot::Error.
+  void check_workers() const;
 
   SlamSettings settings_;
   KeypointFilter* filter_;
   ScaleLevels levels_;
   OrbExtractor extractor_;
   mutable Map map_;
+  KeyFrameDatabase places_;
   LocalMapper mapper_;
+  LoopCloser loop_closer_;
   Tracker tracker_;
   long next_frame_id_ = 0;
   // Timestamps of the frames handed over by look_ahead() and not yet

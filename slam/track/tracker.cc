@@ -5,6 +5,7 @@
 #include <map>
 
 #include "slam/optimize/optimizer.h"
+#include "slam/place/keyframe_database.h"
 #include "slam/solve/pnp_ransac.h"
 
 namespace depot::slam {
@@ -28,13 +29,18 @@ class ScopedTimer {
 
 }  // namespace
 
-Tracker::Tracker(Map& map, KeyFrameSink& mapper, const TrackerParams& params)
-    : map_(map), mapper_(mapper), params_(params) {}
+Tracker::Tracker(Map& map, KeyFrameSink& mapper, const TrackerParams& params,
+                 KeyFrameDatabase* places)
+    : map_(map), mapper_(mapper), params_(params), places_(places) {}
 
 TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
   std::lock_guard<std::mutex> lock(map_.mutex());
   TrackingStats local;
   current_stats_ = &local;
+  // Local BA and loop closing move keyframes between frames: the last
+  // frame's pose follows its reference keyframe (ORB-SLAM2's UpdateLastFrame).
+  if (last_.has_pose && last_.reference && !last_.reference->bad)
+    last_.T_cw = last_T_cr_ * last_.reference->T_cw;
   bool ok = false;
   bool relocalized = false;
   if (state_ == TrackingState::kNotInitialized) {
@@ -88,8 +94,10 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
   } else {
     trajectory_.push_back({frame.timestamp, nullptr, Pose::Identity(), state_});
   }
-  if (ok)
+  if (ok) {
+    if (frame.reference) last_T_cr_ = frame.T_cw * frame.reference->T_cw.inverse();
     last_ = std::move(frame);
+  }
   else
     last_.timestamp = frame.timestamp;
   current_stats_ = nullptr;
@@ -194,15 +202,24 @@ bool Tracker::track_reference_keyframe(Frame& frame, int& matches) {
 }
 
 bool Tracker::relocalize(Frame& frame, int& matches) {
-  // Without a bag-of-words database, try the most recent keyframes.
-  std::vector<KeyFrame*> candidates(map_.keyframes().rbegin(), map_.keyframes().rend());
-  if (static_cast<int>(candidates.size()) > params_.relocalisation_candidates)
-    candidates.resize(params_.relocalisation_candidates);
+  matches = 0;
+  if (!places_) return false;
+  // Any keyframe of the map that looks like the frame (place recognition),
+  // best first; each is tried with BoW-guided matching, PnP RANSAC, pose
+  // optimisation and a guided search in its neighbourhood.
+  const std::vector<KeyFrame*> candidates = places_->relocalisation_candidates(frame);
+  int tried = 0;
   for (KeyFrame* kf : candidates) {
     if (kf->bad) continue;
+    if (tried++ >= params_.relocalisation_candidates) break;
     std::vector<MapPoint*> found;
-    matches = match_by_descriptor(*kf, frame, found, 0.75f);
-    if (matches < 15) continue;
+    int n;
+    {
+      ScopedTimer timer(&current_stats_->match_ms);
+      n = match_by_bow(*kf, frame, found, 0.75f);
+    }
+    matches = std::max(matches, n);
+    if (n < 15) continue;
     std::vector<Eigen::Vector3d> world;
     std::vector<Eigen::Vector2d> pixels;
     std::vector<size_t> index;
@@ -215,6 +232,7 @@ bool Tracker::relocalize(Frame& frame, int& matches) {
     PnpResult pnp = solve_pnp_ransac(world, pixels, frame.features.camera);
     if (!pnp.ok) continue;
     std::fill(frame.map_points.begin(), frame.map_points.end(), nullptr);
+    std::fill(frame.outlier.begin(), frame.outlier.end(), false);
     for (int k : pnp.inliers) frame.map_points[index[k]] = found[index[k]];
     frame.T_cw = pnp.T_cw;
     frame.has_pose = true;
@@ -224,12 +242,17 @@ bool Tracker::relocalize(Frame& frame, int& matches) {
     if (good < params_.relocalisation_min_inliers) {
       // More matches from the candidate's neighbourhood by projection.
       std::vector<ProjectedPoint> projected;
-      for (KeyFrame* n : kf->covisibles(10))
-        for (MapPoint* mp : n->map_points) {
+      for (KeyFrame* n_kf : kf->covisibles(10))
+        for (MapPoint* mp : n_kf->map_points) {
           ProjectedPoint p;
           if (mp && !mp->bad && project_into(*mp, frame.T_cw, frame.features, p))
             projected.push_back(p);
         }
+      for (MapPoint* mp : kf->map_points) {
+        ProjectedPoint p;
+        if (mp && !mp->bad && project_into(*mp, frame.T_cw, frame.features, p))
+          projected.push_back(p);
+      }
       match_local_points(frame, projected, 5.0f);
       good = timed_optimize(frame);
       discard_outliers(frame);
@@ -240,6 +263,8 @@ bool Tracker::relocalize(Frame& frame, int& matches) {
       return true;
     }
   }
+  std::fill(frame.map_points.begin(), frame.map_points.end(), nullptr);
+  frame.has_pose = false;
   return false;
 }
 

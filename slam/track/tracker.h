@@ -2,7 +2,7 @@
 // The tracking front end (ORB-SLAM2's Tracking for RGB-D): initialisation
 // from depth, constant-velocity motion model with projection matching,
 // fallback to the reference keyframe, local-map tracking, keyframe decision
-// and relocalisation. It locks the map while it works on a frame.
+// and relocalisation anywhere in the map (place recognition). It locks the map while it works on a frame.
 #include <vector>
 
 #include "common/pose.h"
@@ -14,6 +14,8 @@
 
 namespace depot::slam {
 
+class KeyFrameDatabase;
+
 struct TrackerParams {
   // Keypoints (after rejection) needed to start, 100 of them with depth;
   // ORB-SLAM2 asks 500 of all keypoints, too many once people are removed.
@@ -22,7 +24,7 @@ struct TrackerParams {
   int min_frames_between_kf = 0;
   int local_map_min_inliers = 30;
   int relocalisation_min_inliers = 50;
-  int relocalisation_candidates = 40;  // most recent keyframes tried
+  int relocalisation_candidates = 20;  // place-recognition candidates tried, best first
 };
 
 struct TrackingStats {
@@ -45,7 +47,10 @@ struct TrajectoryEntry {
 
 class Tracker {
  public:
-  Tracker(Map& map, KeyFrameSink& mapper, const TrackerParams& params = {});
+  // `places` (may be null: a lost tracker then stays lost) finds the
+  // keyframes a lost frame may relocalise against, anywhere in the map.
+  Tracker(Map& map, KeyFrameSink& mapper, const TrackerParams& params = {},
+          KeyFrameDatabase* places = nullptr);
 
   // Tracks a frame whose features are extracted (and filtered).
   TrackingState track(Frame frame, TrackingStats* stats = nullptr);
@@ -76,8 +81,10 @@ class Tracker {
   Map& map_;
   KeyFrameSink& mapper_;
   TrackerParams params_;
+  KeyFrameDatabase* places_;
   TrackingState state_ = TrackingState::kNotInitialized;
   Frame last_;
+  Pose last_T_cr_ = Pose::Identity();  // last frame relative to its reference keyframe
   Pose velocity_ = Pose::Identity();
   bool has_velocity_ = false;
   KeyFrame* reference_ = nullptr;

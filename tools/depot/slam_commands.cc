@@ -88,6 +88,13 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
         s.filter_ms, s.flow_ms, s.wait_ms, s.wait_p95_ms,
         s.detector_name.empty() ? "(no)" : s.detector_name.c_str(), s.detect_ms);
   std::printf("); wrote %s\n", a.output.c_str());
+  std::printf("loops closed: %zu", s.loops.size());
+  for (const slam::LoopClosure& l : s.loops)
+    std::printf("%s keyframe %ld (t %.2f) with %ld, %d matches, moved %.3f m",
+                &l == &s.loops.front() ? " (" : "; ", l.keyframe, l.timestamp, l.matched, l.matches,
+                l.correction_m);
+  std::printf("%s; relocalisation median %.1f ms over %d lost frames\n", s.loops.empty() ? "" : ")",
+              s.lost_ms, s.lost);
   if (a.options.rate_hz > 0) {
     std::printf("input %g Hz, run-ahead %s: %zu frames handled after their turn\n",
                 a.options.rate_hz, a.options.run_ahead ? "on" : "off", s.late_frames);
@@ -186,6 +193,12 @@ void register_slam_commands(CLI::App& app) {
                   "coloured by decision and, on simulated data, by truth)");
   run->add_option("--overlays-every", args->options.overlays_every, "A picture of every n-th frame")
       ->check(CLI::Range(1, 1000000));
+  run->add_option("--vocabulary", args->options.vocabulary,
+                  "Place-recognition vocabulary (default: the settings' place_recognition."
+                  "vocabulary, else the one the build trained; `depot slam vocabulary train`)");
+  run->add_flag_callback(
+      "--no-loop-closing", [args] { args->options.loop_closing = false; },
+      "Do not detect or close loops (place recognition still relocalises)");
   run->add_flag("-q,--quiet", args->options.quiet, "No progress line");
   run->add_option("--rate", args->options.rate_hz,
                   "Input rate (Hz) of an emulated camera: frame i arrives at i / HZ s (0 = as "
@@ -198,6 +211,7 @@ void register_slam_commands(CLI::App& app) {
       "detector before tracking frame i, tracking it once frame i+1 has arrived)");
   add_rejection_options(run, args->options);
   run->callback([args, run] { run_slam(*args, *run); });
+  register_vocabulary_commands(slam);
 }
 
 }  // namespace depot::cli

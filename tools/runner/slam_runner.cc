@@ -222,6 +222,8 @@ RunSummary run_sequence(const RunOptions& o) {
     summary.settings_source = o.settings;
   }
   if (o.sync) settings.threaded_mapping = false;
+  if (!o.vocabulary.empty()) settings.vocabulary = o.vocabulary;
+  if (!o.loop_closing) settings.loop_closing = false;
   sequence.set_depth_factor(settings.camera.depth_factor);
   if (o.frames && *o.frames > sequence.size())
     fail(o.dataset, "has " + std::to_string(sequence.size()) + " frames; --frames asks for " +
@@ -293,6 +295,8 @@ RunSummary run_sequence(const RunOptions& o) {
       ++summary.late_frames;
   };
   if (o.run_ahead) system.look_ahead(bgr_slots[0], depth_slots[0], sequence.entry(0).rgb_timestamp);
+  slam::TrackingState previous_state = slam::TrackingState::kNotInitialized;
+  std::vector<double> relocalising;
   for (size_t i = 0; i < n; ++i) {
     throw_if_interrupted(o.dataset);
     const cv::Mat& bgr = bgr_slots[i % 2];
@@ -309,6 +313,9 @@ RunSummary run_sequence(const RunOptions& o) {
     }
     const double t = sequence.entry(i).rgb_timestamp;
     slam::TrackResult r = system.track(bgr, depth, t);
+    // A frame that follows a lost one is where relocalisation is tried.
+    if (previous_state == slam::TrackingState::kLost) relocalising.push_back(r.timing.track_ms);
+    previous_state = r.state;
     summary.lost += r.state == slam::TrackingState::kLost;
     summary.relocalized += r.state == slam::TrackingState::kRelocalized;
     total.push_back(r.timing.total_ms);
@@ -386,6 +393,8 @@ RunSummary run_sequence(const RunOptions& o) {
   summary.detect_ms = percentile(detect_ms, 0.5);
   summary.flow_ms = percentile(flow_ms, 0.5);
   summary.ba_ms_total = system.mapping_stats().ba_ms;
+  summary.lost_ms = relocalising.empty() ? 0 : percentile(relocalising, 0.5);
+  summary.loops = system.loop_closures();
   if (stats) stats->commit();
   if (keypoint_rows) keypoint_rows->commit();
   if (overlays) {

@@ -12,6 +12,7 @@
 #include "common/yaml_overrides.h"
 #include "eval/motion_truth.h"
 #include "slam/detect/sim_detector_config.h"
+#include "slam/loop/loop_closer.h"
 #include "slam/reject/rejection_filter.h"
 
 namespace depot::runner {
@@ -19,6 +20,8 @@ namespace depot::runner {
 struct RunOptions {
   std::string dataset;
   std::string settings;      // optional settings YAML
+  std::string vocabulary;    // place-recognition vocabulary ("" = the settings' or the default)
+  bool loop_closing = true;  // false: off whatever the settings say
   std::string mode = "orb";  // orb | orb+yolo | orb+lk | full | masked
   std::string detector =
       "";  // sim | darknet | xl | fastestdet | yolov5 | file ("" = sim on simulated data)
@@ -67,6 +70,8 @@ struct RunSummary {
   double median_ms = 0, p95_ms = 0, extract_ms = 0, track_ms = 0;
   double filter_ms = 0, wait_ms = 0, detect_ms = 0, flow_ms = 0;  // medians
   double wait_p95_ms = 0;
+  double lost_ms = 0;  // median time of a frame tracked while lost (relocalisation tries)
+  std::vector<slam::LoopClosure> loops;
   // With rate_hz: frames whose turn (the arrival of frame i, or of frame i+1
   // with run-ahead) had passed when the loop got to them: the tracker lagged.
   size_t late_frames = 0;

@@ -1,0 +1,391 @@
+#include "slam/loop/loop_closer.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "slam/data/map_point.h"
+#include "slam/mapping/local_mapper.h"
+#include "slam/match/orb_matcher.h"
+#include "slam/optimize/optimizer.h"
+#include "slam/optimize/pose_graph.h"
+#include "slam/place/keyframe_database.h"
+#include "slam/solve/rigid_ransac.h"
+
+namespace depot::slam {
+
+struct LoopCloser::Loop {
+  KeyFrame* matched = nullptr;
+  Pose T_cw = Pose::Identity();         // the closing keyframe's corrected pose
+  std::vector<MapPoint*> matches;       // per keypoint of the closing keyframe
+  std::vector<MapPoint*> loop_points;   // the matched keyframe's neighbourhood
+  int n_matches = 0;
+};
+
+namespace {
+
+// A keyframe seen as a frame to match into (no map points yet).
+Frame frame_view(const KeyFrame& kf) {
+  Frame f(kf.frame_id, kf.timestamp, kf.features);
+  f.bow = kf.bow;
+  f.bow_features = kf.bow_features;
+  f.T_cw = kf.T_cw;
+  f.has_pose = true;
+  return f;
+}
+
+}  // namespace
+
+LoopCloser::LoopCloser(Map& map, KeyFrameDatabase& places, LocalMapper& mapper, bool threaded,
+                       const LoopCloserParams& params)
+    : map_(map), places_(places), mapper_(mapper), threaded_(threaded), params_(params) {
+  if (threaded_) thread_ = std::thread([this] { thread_main(); });
+}
+
+LoopCloser::~LoopCloser() {
+  stop();
+}
+
+void LoopCloser::insert_keyframe(KeyFrame* kf) {
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    queue_.push_back(kf);
+  }
+  cv_.notify_one();
+}
+
+bool LoopCloser::idle() const {
+  std::lock_guard<std::mutex> lock(queue_mutex_);
+  return (queue_.empty() && !busy_) || failure_;
+}
+
+size_t LoopCloser::queued() const {
+  std::lock_guard<std::mutex> lock(queue_mutex_);
+  return queue_.size();
+}
+
+std::exception_ptr LoopCloser::failure() const {
+  std::lock_guard<std::mutex> lock(queue_mutex_);
+  return failure_;
+}
+
+std::vector<LoopClosure> LoopCloser::closures() const {
+  std::lock_guard<std::mutex> lock(queue_mutex_);
+  return closures_;
+}
+
+void LoopCloser::run_pending() {
+  while (true) {
+    KeyFrame* kf = nullptr;
+    {
+      std::lock_guard<std::mutex> lock(queue_mutex_);
+      if (queue_.empty()) return;
+      kf = queue_.front();
+      queue_.pop_front();
+    }
+    process(kf);
+  }
+}
+
+void LoopCloser::reset() {
+  while (true) {
+    {
+      std::lock_guard<std::mutex> lock(queue_mutex_);
+      queue_.clear();
+      if (!busy_) break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  std::lock_guard<std::mutex> map_lock(map_.mutex());
+  consistent_groups_.clear();
+  last_loop_keyframe_ = -1;
+}
+
+void LoopCloser::stop() {
+  if (!threaded_ || !thread_.joinable()) return;
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    stop_ = true;
+  }
+  cv_.notify_one();
+  thread_.join();
+}
+
+void LoopCloser::thread_main() {
+  while (true) {
+    KeyFrame* kf = nullptr;
+    {
+      std::unique_lock<std::mutex> lock(queue_mutex_);
+      cv_.wait(lock, [&] { return stop_ || !queue_.empty(); });
+      if (queue_.empty()) return;
+      kf = queue_.front();
+      queue_.pop_front();
+      busy_ = true;
+    }
+    try {
+      process(kf);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(queue_mutex_);
+      failure_ = std::current_exception();
+      queue_.clear();
+      busy_ = false;
+      return;
+    }
+    busy_ = false;
+  }
+}
+
+void LoopCloser::process(KeyFrame* kf) {
+  std::vector<KeyFrame*> candidates;
+  Loop loop;
+  {
+    std::lock_guard<std::mutex> lock(map_.mutex());
+    if (kf->bad || !detect(kf, candidates)) return;
+    if (!compute_transform(kf, candidates, loop)) return;
+  }
+  correct(kf, loop);
+}
+
+bool LoopCloser::detect(KeyFrame* kf, std::vector<KeyFrame*>& out) {
+  out.clear();
+  if (static_cast<long>(map_.n_keyframes()) <= params_.keyframes_between_loops ||
+      (last_loop_keyframe_ >= 0 && kf->id < last_loop_keyframe_ + params_.keyframes_between_loops))
+    return false;
+  // A loop candidate must look at least as much like kf as its least
+  // similar covisible keyframe does.
+  double min_score = 1;
+  for (KeyFrame* c : kf->covisibles()) min_score = std::min(min_score, bow_similarity(kf->bow, c->bow));
+  const std::vector<KeyFrame*> candidates = places_.loop_candidates(*kf, min_score);
+  if (candidates.empty()) {
+    consistent_groups_.clear();
+    return false;
+  }
+  // Consistency: a candidate's group (it and its covisibles) must share a
+  // keyframe with a group seen for the previous keyframes.
+  decltype(consistent_groups_) current;
+  std::vector<bool> previous_extended(consistent_groups_.size(), false);
+  for (KeyFrame* candidate : candidates) {
+    std::set<KeyFrame*, ById> group;
+    group.insert(candidate);
+    for (KeyFrame* c : candidate->covisibles()) group.insert(c);
+    bool consistent_with_any = false;
+    bool accepted = false;
+    for (size_t g = 0; g < consistent_groups_.size(); ++g) {
+      const auto& [previous, count] = consistent_groups_[g];
+      const bool shares = std::any_of(group.begin(), group.end(),
+                                      [&](KeyFrame* k) { return previous.count(k) > 0; });
+      if (!shares) continue;
+      consistent_with_any = true;
+      if (!previous_extended[g]) {
+        current.push_back({group, count + 1});
+        previous_extended[g] = true;
+      }
+      if (count + 1 >= params_.consistency && !accepted) {
+        out.push_back(candidate);
+        accepted = true;
+      }
+    }
+    if (!consistent_with_any) current.push_back({group, 0});
+  }
+  consistent_groups_ = std::move(current);
+  return !out.empty();
+}
+
+bool LoopCloser::compute_transform(KeyFrame* kf, const std::vector<KeyFrame*>& candidates,
+                                   Loop& loop) {
+  const Features& f = kf->features;
+  for (KeyFrame* candidate : candidates) {
+    if (candidate->bad) continue;
+    Frame view = frame_view(*kf);
+    std::vector<MapPoint*> found;
+    if (match_by_bow(*candidate, view, found, 0.75f) < params_.min_bow_matches) continue;
+    std::vector<RigidCorrespondence> pairs;
+    std::vector<size_t> keypoint_of;
+    for (size_t i = 0; i < found.size(); ++i) {
+      MapPoint* mp = found[i];
+      if (!mp || !f.has_depth(i)) continue;
+      auto obs = mp->observations.find(candidate);
+      if (obs == mp->observations.end()) continue;
+      const cv::KeyPoint& kp = f.keypoints[i];
+      const cv::KeyPoint& kp_b = candidate->features.keypoints[obs->second];
+      RigidCorrespondence c;
+      c.in_a = f.camera.unproject(kp.pt.x, kp.pt.y, f.depth[i]);
+      c.in_b = mp->position;
+      c.pixel_a = {kp.pt.x, kp.pt.y};
+      c.pixel_b = {kp_b.pt.x, kp_b.pt.y};
+      c.T_b_camera = candidate->T_cw;
+      c.max_error_px = std::sqrt(9.21 * f.levels->sigma2[std::max(kp.octave, kp_b.octave)]);
+      pairs.push_back(c);
+      keypoint_of.push_back(i);
+    }
+    const RigidResult rigid = solve_rigid_ransac(pairs, f.camera, 300, params_.min_rigid_inliers,
+                                                 static_cast<uint64_t>(kf->id) + 1);
+    if (!rigid.ok) continue;
+    // Refine the pose against the inlier points (held fixed), as tracking does.
+    std::fill(view.map_points.begin(), view.map_points.end(), nullptr);
+    for (int k : rigid.inliers) view.map_points[keypoint_of[k]] = found[keypoint_of[k]];
+    view.T_cw = rigid.T_ab;
+    if (optimize_pose(view) < params_.min_rigid_inliers) continue;
+    for (size_t i = 0; i < view.size(); ++i)
+      if (view.outlier[i]) view.map_points[i] = nullptr, view.outlier[i] = false;
+    // The loop's map points: the candidate's and its covisibles'.
+    std::vector<MapPoint*> loop_points;
+    std::vector<KeyFrame*> around = candidate->covisibles();
+    around.push_back(candidate);
+    std::set<MapPoint*, ById> seen;
+    for (KeyFrame* k : around)
+      for (MapPoint* mp : k->map_points)
+        if (mp && !mp->bad && seen.insert(mp).second) loop_points.push_back(mp);
+    std::vector<ProjectedPoint> projected;
+    for (MapPoint* mp : loop_points) {
+      ProjectedPoint p;
+      if (project_into(*mp, view.T_cw, f, p)) projected.push_back(p);
+    }
+    match_local_points(view, projected, 3.0f);
+    int n = 0;
+    for (MapPoint* mp : view.map_points) n += mp != nullptr;
+    if (n < params_.min_loop_matches) continue;
+    loop.matched = candidate;
+    loop.T_cw = view.T_cw;
+    loop.matches = view.map_points;
+    loop.loop_points = std::move(loop_points);
+    loop.n_matches = n;
+    return true;
+  }
+  return false;
+}
+
+void LoopCloser::correct(KeyFrame* kf, Loop& loop) {
+  mapper_.pause();
+  {
+    std::lock_guard<std::mutex> lock(map_.mutex());
+    if (kf->bad || loop.matched->bad) {
+      mapper_.resume();
+      return;
+    }
+    kf->update_connections();
+    std::vector<KeyFrame*> connected = kf->covisibles();
+    connected.push_back(kf);
+    // Poses of kf's neighbourhood moved rigidly with kf's correction.
+    std::map<KeyFrame*, Pose, ById> original, corrected;
+    const Pose T_wc = kf->T_cw.inverse();
+    for (KeyFrame* c : connected) {
+      original[c] = c->T_cw;
+      corrected[c] = c == kf ? loop.T_cw : c->T_cw * T_wc * loop.T_cw;
+    }
+    const double moved_m = (kf->camera_center() - loop.T_cw.inverse().translation()).norm();
+    for (KeyFrame* c : connected) {
+      const Pose move = corrected[c].inverse() * original[c];
+      for (MapPoint* mp : c->map_points) {
+        if (!mp || mp->bad || mp->loop_corrected_for == kf->id) continue;
+        mp->position = move * mp->position;
+        mp->loop_corrected_for = kf->id;
+        mp->loop_reference = c;
+      }
+      c->T_cw = corrected[c];
+    }
+    for (KeyFrame* c : connected)
+      for (MapPoint* mp : c->map_points)
+        if (mp && !mp->bad) mp->update_normal_and_depth();
+    // The loop's points take the place of kf's duplicates.
+    for (size_t i = 0; i < loop.matches.size(); ++i) {
+      MapPoint* loop_mp = loop.matches[i];
+      if (!loop_mp || loop_mp->bad) continue;
+      MapPoint* mine = kf->map_points[i];
+      if (mine == loop_mp) continue;
+      if (mine && !mine->bad) {
+        mine->replace(loop_mp);
+      } else {
+        kf->add_map_point(loop_mp, i);
+        loop_mp->add_observation(kf, i);
+        loop_mp->update_descriptor();
+      }
+    }
+    for (KeyFrame* c : connected) fuse(c, loop.loop_points, 4.0f);
+    // Links the fusion made across the loop.
+    std::set<KeyFrame*, ById> connected_set(connected.begin(), connected.end());
+    std::map<KeyFrame*, std::set<KeyFrame*, ById>, ById> links;
+    for (KeyFrame* c : connected) {
+      if (c->bad) continue;
+      const std::vector<KeyFrame*> before = c->covisibles();
+      c->update_connections();
+      for (KeyFrame* n : c->covisibles())
+        if (!connected_set.count(n) && std::find(before.begin(), before.end(), n) == before.end())
+          links[c].insert(n);
+    }
+    links[kf].insert(loop.matched);
+    optimize_essential_graph(kf, loop.matched, original, links);
+    kf->loop_edges.insert(loop.matched);
+    loop.matched->loop_edges.insert(kf);
+    last_loop_keyframe_ = kf->id;
+    std::lock_guard<std::mutex> qlock(queue_mutex_);
+    closures_.push_back({kf->id, loop.matched->id, kf->timestamp, loop.n_matches, moved_m});
+  }
+  mapper_.resume();
+}
+
+void LoopCloser::optimize_essential_graph(
+    KeyFrame* kf, KeyFrame* matched, const std::map<KeyFrame*, Pose, ById>& original,
+    const std::map<KeyFrame*, std::set<KeyFrame*, ById>, ById>& links) {
+  std::vector<KeyFrame*> nodes(map_.keyframes().begin(), map_.keyframes().end());
+  std::map<const KeyFrame*, size_t> index;
+  std::vector<Pose> poses;
+  std::vector<bool> fixed;
+  for (KeyFrame* k : nodes) {
+    index[k] = poses.size();
+    poses.push_back(k->T_cw);
+    fixed.push_back(k == map_.first_keyframe());
+  }
+  // Measurements from the poses before this correction: the graph keeps the
+  // map's shape and spreads the loop's error along it.
+  auto before = [&](KeyFrame* k) {
+    auto it = original.find(k);
+    return it == original.end() ? k->T_cw : it->second;
+  };
+  std::vector<PoseGraphEdge> edges;
+  std::set<std::pair<size_t, size_t>> added;
+  auto add = [&](KeyFrame* a, KeyFrame* b, const Pose& T_ab) {
+    auto ia = index.find(a), ib = index.find(b);
+    if (ia == index.end() || ib == index.end() || a == b) return;
+    const auto key = std::minmax(ia->second, ib->second);
+    if (!added.insert(key).second) return;
+    edges.push_back({ia->second, ib->second, T_ab});
+  };
+  // The new loop links, measured with the corrected poses: they carry the loop.
+  for (const auto& [a, others] : links)
+    for (KeyFrame* b : others)
+      if ((a == kf && b == matched) || a->weight(b) >= params_.essential_min_weight)
+        add(a, b, a->T_cw * b->T_cw.inverse());
+  for (KeyFrame* k : nodes) {
+    if (KeyFrame* p = k->parent(); p && !p->bad) add(k, p, before(k) * before(p).inverse());
+    for (KeyFrame* l : k->loop_edges) add(k, l, before(k) * before(l).inverse());
+    for (KeyFrame* c : k->covisibles_with_weight(params_.essential_min_weight))
+      add(k, c, before(k) * before(c).inverse());
+  }
+  std::vector<Pose> optimized = poses;
+  optimize_pose_graph(optimized, fixed, edges);
+  // Points move with their keyframe: the one a correction moved them with,
+  // else their reference (or any observer when that one is gone).
+  std::map<const KeyFrame*, std::pair<Pose, Pose>> change;  // before, after
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    change[nodes[i]] = {nodes[i]->T_cw, optimized[i]};
+    nodes[i]->T_cw = optimized[i];
+  }
+  for (MapPoint* mp : map_.map_points()) {
+    if (mp->bad) continue;
+    KeyFrame* ref = mp->loop_corrected_for == kf->id ? mp->loop_reference : mp->reference;
+    if (!ref || ref->bad || !change.count(ref)) {
+      ref = nullptr;
+      for (auto& [k, idx] : mp->observations)
+        if (!k->bad && change.count(k)) {
+          ref = k;
+          break;
+        }
+    }
+    if (!ref) continue;
+    const auto& [T_before, T_after] = change[ref];
+    mp->position = T_after.inverse() * (T_before * mp->position);
+    mp->update_normal_and_depth();
+  }
+}
+
+}  // namespace depot::slam

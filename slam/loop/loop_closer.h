@@ -1,0 +1,109 @@
+#pragma once
+// Loop closing (ORB-SLAM2's LoopClosing, for RGB-D: scale is measured, so
+// corrections are rigid). For each keyframe local mapping finishes:
+//   1. detection: keyframes not connected to it that look like it (bag of
+//      words), consistent over three consecutive keyframes;
+//   2. geometry: BoW-guided matches to a candidate's map points, a rigid
+//      transform from 3-D/3-D pairs with RANSAC, pose optimisation, then the
+//      loop's map points projected for more matches (>= 40 to accept);
+//   3. correction: local mapping paused, the keyframe and its covisibles
+//      moved to the loop's pose with their points, duplicate points fused,
+//      and the essential graph (spanning tree, loop edges, strong
+//      covisibility) optimised; every point moves with its keyframe. Frames'
+//      trajectory entries hang off keyframes and follow.
+//
+// Threading: in threaded mode the closer runs in its own thread, fed by
+// local mapping. It holds the map mutex while it detects, computes and
+// corrects; it pauses local mapping (LocalMapper::pause) before correcting,
+// so no bundle adjustment writes back poses computed before the
+// correction. Its queue and statistics have their own mutex. In synchronous
+// mode run_pending() does the work on the caller's thread.
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <map>
+#include <mutex>
+#include <set>
+#include <thread>
+#include <vector>
+
+#include "slam/data/map.h"
+#include "slam/mapping/keyframe_sink.h"
+
+namespace depot::slam {
+
+class KeyFrameDatabase;
+class LocalMapper;
+
+struct LoopCloserParams {
+  int keyframes_between_loops = 10;  // no detection this soon after the last loop
+  int consistency = 3;               // consecutive keyframes that must agree
+  int min_bow_matches = 20;
+  int min_rigid_inliers = 20;
+  int min_loop_matches = 40;
+  int essential_min_weight = 100;  // covisibility kept in the essential graph
+};
+
+// One closed loop.
+struct LoopClosure {
+  long keyframe = 0;       // the keyframe that closed it
+  long matched = 0;        // the earlier keyframe it matched
+  double timestamp = 0;    // of the closing keyframe
+  int matches = 0;         // map-point matches that accepted it
+  double correction_m = 0; // how far the closing keyframe moved
+};
+
+class LoopCloser : public KeyFrameSink {
+ public:
+  LoopCloser(Map& map, KeyFrameDatabase& places, LocalMapper& mapper, bool threaded,
+             const LoopCloserParams& params = {});
+  ~LoopCloser() override;
+
+  void insert_keyframe(KeyFrame* kf) override;
+  bool idle() const override;
+  size_t queued() const override;
+  void interrupt_ba() override {}
+
+  // Synchronous mode: processes every queued keyframe now.
+  void run_pending();
+  // Forgets queued keyframes and detection state (after the map was cleared).
+  void reset();
+  // Threaded mode: finishes the queue and stops the thread.
+  void stop();
+  // The first exception the thread threw (null when none); the thread stops then.
+  std::exception_ptr failure() const;
+  std::vector<LoopClosure> closures() const;
+
+ private:
+  struct Loop;
+  void thread_main();
+  void process(KeyFrame* kf);
+  bool detect(KeyFrame* kf, std::vector<KeyFrame*>& candidates);
+  bool compute_transform(KeyFrame* kf, const std::vector<KeyFrame*>& candidates, Loop& loop);
+  void correct(KeyFrame* kf, Loop& loop);
+  void optimize_essential_graph(KeyFrame* kf, KeyFrame* matched,
+                                const std::map<KeyFrame*, Pose, ById>& original,
+                                const std::map<KeyFrame*, std::set<KeyFrame*, ById>, ById>& links);
+
+  Map& map_;
+  KeyFrameDatabase& places_;
+  LocalMapper& mapper_;
+  bool threaded_;
+  LoopCloserParams params_;
+  // Detection state: groups of keyframes and for how many consecutive
+  // keyframes each has been seen (ORB-SLAM2's consistent groups).
+  std::vector<std::pair<std::set<KeyFrame*, ById>, int>> consistent_groups_;
+  long last_loop_keyframe_ = -1;
+
+  mutable std::mutex queue_mutex_;
+  std::condition_variable cv_;
+  std::deque<KeyFrame*> queue_;
+  std::atomic<bool> busy_{false};
+  bool stop_ = false;
+  std::exception_ptr failure_;
+  std::vector<LoopClosure> closures_;
+  std::thread thread_;
+};
+
+}  // namespace depot::slam
