@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 #include "slam/data/map_point.h"
 #include "slam/mapping/local_mapper.h"
 #include "slam/match/orb_matcher.h"
@@ -66,6 +68,11 @@ size_t LoopCloser::queued() const {
 std::exception_ptr LoopCloser::failure() const {
   std::lock_guard<std::mutex> lock(queue_mutex_);
   return failure_;
+}
+
+int LoopCloser::refused() const {
+  std::lock_guard<std::mutex> lock(queue_mutex_);
+  return implausible_;
 }
 
 std::vector<LoopClosure> LoopCloser::closures() const {
@@ -244,6 +251,11 @@ bool LoopCloser::compute_transform(KeyFrame* kf, const std::vector<KeyFrame*>& c
     int n = 0;
     for (MapPoint* mp : view.map_points) n += mp != nullptr;
     if (n < params_.min_loop_matches) continue;
+    if (!plausible_correction(*kf, *candidate, view.T_cw)) {
+      std::lock_guard<std::mutex> qlock(queue_mutex_);
+      ++implausible_;
+      continue;
+    }
     loop.matched = candidate;
     loop.T_cw = view.T_cw;
     loop.matches = view.map_points;
@@ -252,6 +264,32 @@ bool LoopCloser::compute_transform(KeyFrame* kf, const std::vector<KeyFrame*>& c
     return true;
   }
   return false;
+}
+
+namespace {
+
+// Path length through the keyframes with ids in [from_id, to_id].
+double path_between(const Map& map, long from_id, long to_id) {
+  double path = 0;
+  const KeyFrame* previous = nullptr;
+  for (const KeyFrame* k : map.keyframes()) {
+    if (k->id < from_id || k->id > to_id) continue;
+    if (previous) path += (k->camera_center() - previous->camera_center()).norm();
+    previous = k;
+  }
+  return path;
+}
+
+}  // namespace
+
+bool LoopCloser::plausible_correction(const KeyFrame& kf, const KeyFrame& matched,
+                                      const Pose& T_cw) const {
+  const double path = path_between(map_, std::min(kf.id, matched.id), std::max(kf.id, matched.id));
+  const Pose change = T_cw * kf.T_cw.inverse();
+  const double moved = (kf.camera_center() - T_cw.inverse().translation()).norm();
+  const double turned = Eigen::AngleAxisd(change.linear()).angle();
+  return moved <= params_.max_correction_m + params_.drift_per_m * path &&
+         turned <= params_.max_rotation_rad + params_.rotation_per_m * path;
 }
 
 void LoopCloser::correct(KeyFrame* kf, Loop& loop) {
@@ -318,7 +356,8 @@ void LoopCloser::correct(KeyFrame* kf, Loop& loop) {
     loop.matched->loop_edges.insert(kf);
     last_loop_keyframe_ = kf->id;
     std::lock_guard<std::mutex> qlock(queue_mutex_);
-    closures_.push_back({kf->id, loop.matched->id, kf->timestamp, loop.n_matches, moved_m});
+    closures_.push_back({kf->id, loop.matched->id, kf->timestamp, loop.n_matches, moved_m,
+                         path_between(map_, loop.matched->id, kf->id)});
   }
   mapper_.resume();
 }

@@ -43,6 +43,16 @@ struct LoopCloserParams {
   int min_rigid_inliers = 20;
   int min_loop_matches = 40;
   int essential_min_weight = 100;  // covisibility kept in the essential graph
+  // A depot repeats its racks: two places metres apart can look alike to
+  // the words and to the geometry. A loop is believed only when the
+  // correction it asks for is drift that tracking could have made: at most
+  // max_correction_m plus drift_per_m times the path travelled (through the
+  // keyframes) since the matched keyframe, in translation; in rotation
+  // max_rotation_rad plus rotation_per_m per metre.
+  double max_correction_m = 0.3;
+  double drift_per_m = 0.05;
+  double max_rotation_rad = 0.1;
+  double rotation_per_m = 0.01;
 };
 
 // One closed loop.
@@ -52,6 +62,7 @@ struct LoopClosure {
   double timestamp = 0;    // of the closing keyframe
   int matches = 0;         // map-point matches that accepted it
   double correction_m = 0; // how far the closing keyframe moved
+  double path_m = 0;       // path travelled between the two keyframes
 };
 
 class LoopCloser : public KeyFrameSink {
@@ -74,6 +85,8 @@ class LoopCloser : public KeyFrameSink {
   // The first exception the thread threw (null when none); the thread stops then.
   std::exception_ptr failure() const;
   std::vector<LoopClosure> closures() const;
+  // Loops found but refused as implausible corrections (look-alike places).
+  int refused() const;
 
  private:
   struct Loop;
@@ -81,6 +94,8 @@ class LoopCloser : public KeyFrameSink {
   void process(KeyFrame* kf);
   bool detect(KeyFrame* kf, std::vector<KeyFrame*>& candidates);
   bool compute_transform(KeyFrame* kf, const std::vector<KeyFrame*>& candidates, Loop& loop);
+  // Whether moving kf to T_cw is drift it could have gathered since `matched`.
+  bool plausible_correction(const KeyFrame& kf, const KeyFrame& matched, const Pose& T_cw) const;
   void correct(KeyFrame* kf, Loop& loop);
   void optimize_essential_graph(KeyFrame* kf, KeyFrame* matched,
                                 const std::map<KeyFrame*, Pose, ById>& original,
@@ -91,6 +106,7 @@ class LoopCloser : public KeyFrameSink {
   LocalMapper& mapper_;
   bool threaded_;
   LoopCloserParams params_;
+  int implausible_ = 0;  // loops refused by plausible_correction (queue_mutex_)
   // Detection state: groups of keyframes and for how many consecutive
   // keyframes each has been seen (ORB-SLAM2's consistent groups).
   std::vector<std::pair<std::set<KeyFrame*, ById>, int>> consistent_groups_;

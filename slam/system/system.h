@@ -65,6 +65,7 @@ class System {
   size_t n_map_points() const;
   LocalMapperStats mapping_stats() const { return mapper_.stats(); }
   std::vector<LoopClosure> loop_closures() const { return loop_closer_.closures(); }
+  int loops_refused() const { return loop_closer_.refused(); }
   const SlamSettings& settings() const { return settings_; }
   int resets() const { return resets_; }
 

@@ -395,6 +395,7 @@ RunSummary run_sequence(const RunOptions& o) {
   summary.ba_ms_total = system.mapping_stats().ba_ms;
   summary.lost_ms = relocalising.empty() ? 0 : percentile(relocalising, 0.5);
   summary.loops = system.loop_closures();
+  summary.loops_refused = system.loops_refused();
   if (stats) stats->commit();
   if (keypoint_rows) keypoint_rows->commit();
   if (overlays) {

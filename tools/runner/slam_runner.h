@@ -72,6 +72,7 @@ struct RunSummary {
   double wait_p95_ms = 0;
   double lost_ms = 0;  // median time of a frame tracked while lost (relocalisation tries)
   std::vector<slam::LoopClosure> loops;
+  int loops_refused = 0;  // look-alike places refused by the plausibility test
   // With rate_hz: frames whose turn (the arrival of frame i, or of frame i+1
   // with run-ahead) had passed when the loop got to them: the tracker lagged.
   size_t late_frames = 0;
