@@ -75,6 +75,14 @@ TEST(CliSim, OutOfRangeParameter) {
   expect_clean_failure("sim render " + yaml, temp_path("out"), "out of range");
 }
 
+TEST(CliSim, BadCameraCover) {
+  std::string yaml = write_yaml("cover", scene_lines() +
+                                             "frames: 30\nmotion: {type: static}\n"
+                                             "camera_cover: [[0.2, 0.5], [0.4, 0.8]]\n");
+  expect_clean_failure("sim render " + yaml, temp_path("out"),
+                       yaml + ":5: 'camera_cover' interval 2 [0.4, 0.8] overlaps");
+}
+
 TEST(CliSim, ListsShippedScenarios) {
   DepotResult r = depot("sim list");
   EXPECT_EQ(r.code, 0) << r.output;
