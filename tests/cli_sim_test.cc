@@ -86,9 +86,10 @@ TEST(CliSim, BadCameraCover) {
 TEST(CliSim, ListsShippedScenarios) {
   DepotResult r = depot("sim list");
   EXPECT_EQ(r.code, 0) << r.output;
-  for (const char* name : {"depot_walking_xyz", "depot_walking_halfsphere", "depot_walking_rpy",
-                           "depot_walking_static", "depot_sitting_xyz", "depot_sitting_static",
-                           "depot_patrol", "depot_static"})
+  for (const char* name :
+       {"depot_walking_xyz", "depot_walking_halfsphere", "depot_walking_rpy",
+        "depot_walking_static", "depot_sitting_xyz", "depot_sitting_static", "depot_patrol",
+        "depot_patrol_two_laps", "depot_kidnapped", "depot_static"})
     EXPECT_NE(r.output.find(name), std::string::npos) << name;
 }
 
