@@ -75,12 +75,21 @@ TEST(CliSim, OutOfRangeParameter) {
   expect_clean_failure("sim render " + yaml, temp_path("out"), "out of range");
 }
 
+TEST(CliSim, BadCameraCover) {
+  std::string yaml = write_yaml("cover", scene_lines() +
+                                             "frames: 30\nmotion: {type: static}\n"
+                                             "camera_cover: [[0.2, 0.5], [0.4, 0.8]]\n");
+  expect_clean_failure("sim render " + yaml, temp_path("out"),
+                       yaml + ":5: 'camera_cover' interval 2 [0.4, 0.8] overlaps");
+}
+
 TEST(CliSim, ListsShippedScenarios) {
   DepotResult r = depot("sim list");
   EXPECT_EQ(r.code, 0) << r.output;
-  for (const char* name : {"depot_walking_xyz", "depot_walking_halfsphere", "depot_walking_rpy",
-                           "depot_walking_static", "depot_sitting_xyz", "depot_sitting_static",
-                           "depot_patrol", "depot_static"})
+  for (const char* name :
+       {"depot_walking_xyz", "depot_walking_halfsphere", "depot_walking_rpy",
+        "depot_walking_static", "depot_sitting_xyz", "depot_sitting_static", "depot_patrol",
+        "depot_patrol_two_laps", "depot_kidnapped", "depot_static"})
     EXPECT_NE(r.output.find(name), std::string::npos) << name;
 }
 

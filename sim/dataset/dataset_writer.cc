@@ -108,8 +108,14 @@ void DatasetWriter::add(RenderedFrame frame, const FrameTruth& truth) {
   }
   yolo_files_.emplace_back(rs, yolo);
   ++frames_;
+  if (truth.covered) {
+    if (!covered_frames_.empty() && covered_frames_.back().second == truth.index - 1)
+      covered_frames_.back().second = truth.index;
+    else
+      covered_frames_.emplace_back(truth.index, truth.index);
+  }
 
-  Job job{std::move(frame), rs, ds, truth.index};
+  Job job{std::move(frame), rs, ds, truth.index, truth.covered};
   std::unique_lock<std::mutex> lock(mutex_);
   cv_.wait(lock, [&] { return queue_.size() < kMaxQueued || error_; });
   if (error_) std::rethrow_exception(error_);
@@ -149,7 +155,8 @@ void DatasetWriter::write_job(Job& job, WriterTimings& timings) {
   const SensorSpec& sensor = scenario_.sensor;
   const uint64_t seed = derive_seed(scenario_.seed, 0x5e9, static_cast<uint64_t>(job.index));
   cv::Mat depth = job.frame.depth;
-  if (!sensor.ideal) {
+  // A covered camera sees exactly nothing: black and no depth, not noise.
+  if (!sensor.ideal && !job.covered) {
     depth = apply_depth_model(job.frame.depth, sensor, scenario_.camera.f, seed);
     apply_rgb_noise(job.frame.bgr, sensor.rgb_noise, derive_seed(seed, 1));
   }
@@ -212,6 +219,15 @@ void DatasetWriter::write_text_files() {
                          {"sensor", s.ideal ? "ideal" : "kinect"},
                          {"motion", scenario_.motion.type}};
   info["world_seed"] = scenario_.world_seed();
+  if (!scenario_.camera_cover.empty()) {
+    // Seconds as written, and the frames they cover (first and last index)
+    // for evaluations of relocalisation after the cover.
+    nlohmann::json seconds = nlohmann::json::array(), frames = nlohmann::json::array();
+    for (const CoverInterval& c : scenario_.camera_cover) seconds.push_back({c.start, c.end});
+    for (const auto& [first, last] : covered_frames_) frames.push_back({first, last});
+    info["camera_cover"] = seconds;
+    info["covered_frames"] = frames;
+  }
   write("info.json", info.dump(1) + "\n");
   std::ifstream src(scenario_.source_path, std::ios::binary);
   std::string yaml((std::istreambuf_iterator<char>(src)), std::istreambuf_iterator<char>());

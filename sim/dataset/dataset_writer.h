@@ -61,6 +61,7 @@ class DatasetWriter {
     RenderedFrame frame;
     std::string stamp_rgb, stamp_depth;
     int index = 0;
+    bool covered = false;  // a covered camera's frame gets no sensor noise
   };
   void worker();
   void write_job(Job& job, WriterTimings& timings);
@@ -84,6 +85,7 @@ class DatasetWriter {
   std::string rgb_txt_, depth_txt_, assoc_txt_, gt_txt_, labels_txt_, poses_txt_, boxes_txt_;
   std::vector<std::pair<std::string, std::string>> yolo_files_;  // stamp -> content
   int frames_ = 0;
+  std::vector<std::pair<int, int>> covered_frames_;  // first and last index of each cover
 };
 
 std::string format_timestamp(double t);

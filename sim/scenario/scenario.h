@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "sim/actors/path.h"
+#include "sim/scenario/camera_cover.h"
 
 namespace depot::sim {
 
@@ -110,6 +111,8 @@ struct Scenario {
   CameraMotionSpec motion;
   TimestampSpec timestamps;
   SensorSpec sensor;
+  // `camera_cover`: when the camera sees nothing (sim/scenario/camera_cover.h).
+  std::vector<CoverInterval> camera_cover;
   std::vector<ActorSpec> written_actors;  // as in the file
   std::vector<ActorSpec> actors;          // after dynamic-load scaling
 };

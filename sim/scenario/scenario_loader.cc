@@ -214,6 +214,34 @@ void read_sensor(const Fields& f, SensorSpec& s) {
   if (s.min_depth >= s.max_depth) fail(f.where(), "sensor min_depth must be below max_depth");
 }
 
+// `camera_cover: [[start, end], ...]`, seconds since the first frame. Every
+// problem is one error naming the file, the line and the key.
+std::vector<CoverInterval> read_camera_cover(const Fields& top, const Scenario& s) {
+  const YAML::Node n = top.node("camera_cover");
+  const std::string key = "'camera_cover'";
+  if (!n.IsSequence())
+    fail(top.where(n), key + " must be a list of [start, end] intervals in seconds");
+  std::vector<CoverInterval> out;
+  for (const auto& item : n) {
+    std::vector<double> v;
+    try {
+      v = item.as<std::vector<double>>();
+    } catch (const YAML::Exception&) {
+      v.clear();
+    }
+    if (v.size() != 2)
+      fail(top.where(item), key + " interval " + std::to_string(out.size() + 1) +
+                                " must be [start, end] in seconds");
+    out.push_back({v[0], v[1]});
+  }
+  // Generated timestamps fix the sequence's length; a timestamps file's is
+  // only known when it is read (the frames are then bounded by it).
+  const double duration = s.timestamps.file.empty() ? s.frames / s.timestamps.rate : 0.0;
+  const std::string problem = camera_cover_problem(out, duration);
+  if (!problem.empty()) fail(top.where(n), key + " " + problem);
+  return out;
+}
+
 ActorSpec read_actor(const Fields& f, size_t index, uint64_t seed) {
   f.allow_only({"name", "type", "action", "path", "loop", "speed", "start_offset", "start_time",
                 "size", "position", "yaw_deg", "pushes", "sit_on", "height", "appearance"});
@@ -261,7 +289,8 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
   Fields top(root, path, "scenario");
   top.allow_only({"name", "description", "scene", "classes", "seed", "seed_world", "frames",
                   "shadows", "dynamic_load", "style", "actors_style", "props_style",
-                  "asset_catalog", "camera", "motion", "timestamps", "sensor", "actors"});
+                  "asset_catalog", "camera", "motion", "timestamps", "sensor", "camera_cover",
+                  "actors"});
 
   Scenario s;
   s.source_path = path;
@@ -302,6 +331,7 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
   if (top.has("timestamps"))
     read_timestamps(Fields(top.node("timestamps"), path, "timestamps"), s.timestamps);
   if (top.has("sensor")) read_sensor(Fields(top.node("sensor"), path, "sensor"), s.sensor);
+  if (top.has("camera_cover")) s.camera_cover = read_camera_cover(top, s);
 
   if (YAML::Node actors = top.node("actors")) {
     if (!actors.IsSequence()) fail(top.where(actors), "'actors' must be a list");

@@ -34,6 +34,14 @@ std::vector<std::pair<double, double>> frame_timestamps(const Scenario& s) {
   return out;
 }
 
+RenderedFrame covered_frame(const CameraIntrinsics& camera) {
+  RenderedFrame f;
+  f.bgr = cv::Mat::zeros(camera.height, camera.width, CV_8UC3);
+  f.depth = cv::Mat::zeros(camera.height, camera.width, CV_32F);
+  f.instance = cv::Mat::zeros(camera.height, camera.width, CV_16U);
+  return f;
+}
+
 SimulatedSequence::SimulatedSequence(const Scenario& scenario, GlBackend backend, bool render)
     : scenario_(scenario), classes_(ClassTable::load(scenario.classes_path)) {
   stamps_ = frame_timestamps(scenario_);
@@ -73,7 +81,11 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
   const auto [t_rgb, t_depth] = stamps_[next_];
   // The world runs one frame period ahead of the first timestamp, so frame 0
   // already has a previous state to compare moving flags against.
-  const double world_time = t_rgb - stamps_.front().first + 1.0 / scenario_.timestamps.rate;
+  const double since_first = t_rgb - stamps_.front().first;
+  const double world_time = since_first + 1.0 / scenario_.timestamps.rate;
+  // Under a cover the world and the camera move on as usual; only the images
+  // are the covered camera's (nothing rendered, so a cover also costs nothing).
+  const bool covered = is_covered(scenario_.camera_cover, since_first);
   auto t0 = std::chrono::steady_clock::now();
   world_->advance_to(world_time);
   const Pose world_camera = motion_->pose_at(t_rgb);
@@ -81,13 +93,19 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
   if (timings)
     timings->physics_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  if (frame) renderer_->render(world_->data(), *frame, timings ? &timings->render : nullptr);
+  if (frame && covered) {
+    *frame = covered_frame(scenario_.camera);
+    if (timings) timings->render = RenderTimings();
+  } else if (frame) {
+    renderer_->render(world_->data(), *frame, timings ? &timings->render : nullptr);
+  }
 
   const Pose dataset_from_world = motion_->world_from_dataset().inverse();
   truth.index = next_;
   truth.rgb_timestamp = t_rgb;
   truth.depth_timestamp = t_depth;
   truth.camera = dataset_from_world * world_camera;
+  truth.covered = covered;
   truth.objects.clear();
   std::vector<Pose> bodies;
   for (size_t i = 0; i < tracked_.size(); ++i) {

@@ -27,7 +27,10 @@ struct FrameTruth {
   int index = 0;
   double rgb_timestamp = 0.0;
   double depth_timestamp = 0.0;
-  Pose camera = Pose::Identity();    // T_dataset_camera
+  Pose camera = Pose::Identity();  // T_dataset_camera
+  // Inside a `camera_cover` interval: the images are a covered camera's (see
+  // covered_frame()), while the camera and the objects keep their true poses.
+  bool covered = false;
   std::vector<ObjectState> objects;  // every pushable and actor instance
 };
 
@@ -38,6 +41,10 @@ struct SequenceTimings {
 
 // The frame timestamps of a scenario: (rgb, depth) pairs.
 std::vector<std::pair<double, double>> frame_timestamps(const Scenario& scenario);
+
+// What a covered RGB-D camera gives: a black colour image, no depth (0 =
+// invalid) and, since nothing is seen, no instance in the labels.
+RenderedFrame covered_frame(const CameraIntrinsics& camera);
 
 constexpr double kMovingTranslation = 0.001;  // m
 constexpr double kMovingRotationDeg = 0.1;
