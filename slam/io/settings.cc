@@ -75,8 +75,8 @@ SlamSettings load_settings(const std::string& path, const SlamSettings& defaults
            "bad value for 'vocabulary' (a file path)");
     }
   }
-  s.tracker.relocalisation_candidates = read<int>(places, "relocalisation_candidates",
-                                                  s.tracker.relocalisation_candidates, path, 1, 1000);
+  s.tracker.relocalisation_candidates = read<int>(
+      places, "relocalisation_candidates", s.tracker.relocalisation_candidates, path, 1, 1000);
   const YAML::Node loops = root["loop_closing"];
   if (loops && loops["enabled"]) {
     try {

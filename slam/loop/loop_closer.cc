@@ -11,15 +11,16 @@
 #include "slam/optimize/optimizer.h"
 #include "slam/optimize/pose_graph.h"
 #include "slam/place/keyframe_database.h"
+#include "slam/solve/pnp_ransac.h"
 #include "slam/solve/rigid_ransac.h"
 
 namespace depot::slam {
 
 struct LoopCloser::Loop {
   KeyFrame* matched = nullptr;
-  Pose T_cw = Pose::Identity();         // the closing keyframe's corrected pose
-  std::vector<MapPoint*> matches;       // per keypoint of the closing keyframe
-  std::vector<MapPoint*> loop_points;   // the matched keyframe's neighbourhood
+  Pose T_cw = Pose::Identity();        // the closing keyframe's corrected pose
+  std::vector<MapPoint*> matches;      // per keypoint of the closing keyframe
+  std::vector<MapPoint*> loop_points;  // the matched keyframe's neighbourhood
   int n_matches = 0;
 };
 
@@ -160,7 +161,8 @@ bool LoopCloser::detect(KeyFrame* kf, std::vector<KeyFrame*>& out) {
   // A loop candidate must look at least as much like kf as its least
   // similar covisible keyframe does.
   double min_score = 1;
-  for (KeyFrame* c : kf->covisibles()) min_score = std::min(min_score, bow_similarity(kf->bow, c->bow));
+  for (KeyFrame* c : kf->covisibles())
+    min_score = std::min(min_score, bow_similarity(kf->bow, c->bow));
   const std::vector<KeyFrame*> candidates = places_.loop_candidates(*kf, min_score);
   if (candidates.empty()) {
     consistent_groups_.clear();
@@ -209,13 +211,23 @@ bool LoopCloser::compute_transform(KeyFrame* kf, const std::vector<KeyFrame*>& c
     std::vector<size_t> keypoint_of;
     for (size_t i = 0; i < found.size(); ++i) {
       MapPoint* mp = found[i];
-      if (!mp || !f.has_depth(i)) continue;
+      if (!mp) continue;
+      // kf's own 3-D point for the keypoint: its map point (also those
+      // triangulated beyond the depth range), else its depth.
+      Eigen::Vector3d in_a;
+      const MapPoint* own = kf->map_points[i];
+      if (own && !own->bad)
+        in_a = kf->T_cw * own->position;
+      else if (f.has_depth(i))
+        in_a = f.camera.unproject(f.keypoints[i].pt.x, f.keypoints[i].pt.y, f.depth[i]);
+      else
+        continue;
       auto obs = mp->observations.find(candidate);
       if (obs == mp->observations.end()) continue;
       const cv::KeyPoint& kp = f.keypoints[i];
       const cv::KeyPoint& kp_b = candidate->features.keypoints[obs->second];
       RigidCorrespondence c;
-      c.in_a = f.camera.unproject(kp.pt.x, kp.pt.y, f.depth[i]);
+      c.in_a = in_a;
       c.in_b = mp->position;
       c.pixel_a = {kp.pt.x, kp.pt.y};
       c.pixel_b = {kp_b.pt.x, kp_b.pt.y};
@@ -224,13 +236,37 @@ bool LoopCloser::compute_transform(KeyFrame* kf, const std::vector<KeyFrame*>& c
       pairs.push_back(c);
       keypoint_of.push_back(i);
     }
+    // The corrected pose of kf: rigid from 3-D/3-D pairs where kf knows its
+    // points; when too few do (the loop seen from beyond the depth range),
+    // from 3-D/2-D pairs with PnP, as relocalisation does: scale is known
+    // either way.
+    std::vector<size_t> inliers;
+    Pose T_cw;
     const RigidResult rigid = solve_rigid_ransac(pairs, f.camera, 300, params_.min_rigid_inliers,
                                                  static_cast<uint64_t>(kf->id) + 1);
-    if (!rigid.ok) continue;
+    if (rigid.ok) {
+      T_cw = rigid.T_ab;
+      for (int k : rigid.inliers) inliers.push_back(keypoint_of[k]);
+    } else {
+      std::vector<Eigen::Vector3d> world;
+      std::vector<Eigen::Vector2d> pixels;
+      std::vector<size_t> index;
+      for (size_t i = 0; i < found.size(); ++i) {
+        if (!found[i]) continue;
+        world.push_back(found[i]->position);
+        pixels.emplace_back(f.keypoints[i].pt.x, f.keypoints[i].pt.y);
+        index.push_back(i);
+      }
+      const PnpResult pnp =
+          solve_pnp_ransac(world, pixels, f.camera, 300, 4.0, params_.min_rigid_inliers);
+      if (!pnp.ok) continue;
+      T_cw = pnp.T_cw;
+      for (int k : pnp.inliers) inliers.push_back(index[k]);
+    }
     // Refine the pose against the inlier points (held fixed), as tracking does.
     std::fill(view.map_points.begin(), view.map_points.end(), nullptr);
-    for (int k : rigid.inliers) view.map_points[keypoint_of[k]] = found[keypoint_of[k]];
-    view.T_cw = rigid.T_ab;
+    for (size_t i : inliers) view.map_points[i] = found[i];
+    view.T_cw = T_cw;
     if (optimize_pose(view) < params_.min_rigid_inliers) continue;
     for (size_t i = 0; i < view.size(); ++i)
       if (view.outlier[i]) view.map_points[i] = nullptr, view.outlier[i] = false;

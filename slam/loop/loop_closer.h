@@ -4,7 +4,8 @@
 //   1. detection: keyframes not connected to it that look like it (bag of
 //      words), consistent over three consecutive keyframes;
 //   2. geometry: BoW-guided matches to a candidate's map points, a rigid
-//      transform from 3-D/3-D pairs with RANSAC, pose optimisation, then the
+//      transform from 3-D/3-D pairs with RANSAC (PnP from 3-D/2-D pairs when
+//      kf knows too few of its points), pose optimisation, then the
 //      loop's map points projected for more matches (>= 40 to accept);
 //   3. correction: local mapping paused, the keyframe and its covisibles
 //      moved to the loop's pose with their points, duplicate points fused,
@@ -57,12 +58,12 @@ struct LoopCloserParams {
 
 // One closed loop.
 struct LoopClosure {
-  long keyframe = 0;       // the keyframe that closed it
-  long matched = 0;        // the earlier keyframe it matched
-  double timestamp = 0;    // of the closing keyframe
-  int matches = 0;         // map-point matches that accepted it
-  double correction_m = 0; // how far the closing keyframe moved
-  double path_m = 0;       // path travelled between the two keyframes
+  long keyframe = 0;        // the keyframe that closed it
+  long matched = 0;         // the earlier keyframe it matched
+  double timestamp = 0;     // of the closing keyframe
+  int matches = 0;          // map-point matches that accepted it
+  double correction_m = 0;  // how far the closing keyframe moved
+  double path_m = 0;        // path travelled between the two keyframes
 };
 
 class LoopCloser : public KeyFrameSink {

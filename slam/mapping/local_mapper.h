@@ -2,8 +2,8 @@
 // Local mapping (ORB-SLAM2's LocalMapping): takes keyframes from tracking,
 // links their map points, culls weak new points, triangulates new points
 // with neighbour keyframes, fuses duplicates, runs local bundle adjustment
-// and removes redundant keyframes; keeps the place-recognition index. Runs in its own thread, or synchronously
-// (run_pending) for reproducible runs.
+// and removes redundant keyframes; keeps the place-recognition index. Runs in its own thread, or
+// synchronously (run_pending) for reproducible runs.
 #include <atomic>
 #include <condition_variable>
 #include <deque>

@@ -222,8 +222,8 @@ int match_by_bow(const KeyFrame& kf, const Frame& frame, std::vector<MapPoint*>&
       size_t best_fi = 0;
       for (size_t fi : iff->second) {
         if (matches[fi]) continue;
-        const int d =
-            descriptor_distance(d_kf, frame.features.descriptors.ptr<uint8_t>(static_cast<int>(fi)));
+        const int d = descriptor_distance(
+            d_kf, frame.features.descriptors.ptr<uint8_t>(static_cast<int>(fi)));
         if (d < best) {
           second = best;
           best = d, best_fi = fi;

@@ -44,9 +44,9 @@ double optimize_pose_graph(std::vector<Pose>& T_cw, const std::vector<bool>& fix
   ceres::Problem problem;
   std::vector<bool> used(n, false);
   for (const PoseGraphEdge& e : edges) {
-    auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 6, 4, 3, 4, 3>(
-        new RelativePoseError{Eigen::Quaterniond(e.T_ab.linear()).normalized(),
-                              e.T_ab.translation()});
+    auto* cost =
+        new ceres::AutoDiffCostFunction<RelativePoseError, 6, 4, 3, 4, 3>(new RelativePoseError{
+            Eigen::Quaterniond(e.T_ab.linear()).normalized(), e.T_ab.translation()});
     problem.AddResidualBlock(cost, nullptr, q[e.a].data(), t[e.a].data(), q[e.b].data(),
                              t[e.b].data());
     used[e.a] = used[e.b] = true;

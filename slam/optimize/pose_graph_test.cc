@@ -37,8 +37,8 @@ TEST(PoseGraph, ALoopEdgeCorrectsDrift) {
   const std::vector<Pose> truth = circle(0);
   // Drifted estimate: accumulate true relative motions with a rotation error.
   std::vector<Pose> estimate = {truth[0]};
-  const Pose bias = make_pose(
-      Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitY()).toRotationMatrix(), Eigen::Vector3d(0.01, 0, 0));
+  const Pose bias = make_pose(Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitY()).toRotationMatrix(),
+                              Eigen::Vector3d(0.01, 0, 0));
   for (size_t i = 1; i < truth.size(); ++i) {
     const Pose T_i_prev = truth[i] * truth[i - 1].inverse();
     estimate.push_back(bias * T_i_prev * estimate.back());
@@ -61,7 +61,8 @@ TEST(PoseGraph, ConsistentEdgesLeaveThePosesAlone) {
   std::vector<Pose> poses = circle(0);
   const std::vector<Pose> start = poses;
   std::vector<PoseGraphEdge> edges;
-  for (size_t i = 1; i < poses.size(); ++i) edges.push_back({i - 1, i, poses[i - 1] * poses[i].inverse()});
+  for (size_t i = 1; i < poses.size(); ++i)
+    edges.push_back({i - 1, i, poses[i - 1] * poses[i].inverse()});
   std::vector<bool> fixed(poses.size(), false);
   fixed[0] = true;
   EXPECT_LT(optimize_pose_graph(poses, fixed, edges), 1e-12);

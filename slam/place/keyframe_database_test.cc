@@ -70,7 +70,8 @@ struct Database {
   std::vector<KeyFrame*> keyframes;
   Database() {
     for (size_t i = 0; i < scene().images.size(); ++i) {
-      KeyFrame* kf = map.create_keyframe(frame_of(static_cast<long>(i), scene().images[i], &scene().levels));
+      KeyFrame* kf =
+          map.create_keyframe(frame_of(static_cast<long>(i), scene().images[i], &scene().levels));
       for (size_t k = 0; k < kf->features.size(); ++k) {
         MapPoint* mp = map.create_map_point(Eigen::Vector3d(0, 0, 1), kf);
         mp->add_observation(kf, k);
@@ -125,8 +126,10 @@ TEST(MatchByBow, MatchesAgreeWithTheKnownWarp) {
       const size_t k = matches[f]->observations.begin()->second;
       const cv::Point2f p = d.keyframes[i]->features.keypoints[k].pt;
       const cv::Point2f q = query.features.keypoints[f].pt;
-      const double u = kWarp.at<double>(0, 0) * p.x + kWarp.at<double>(0, 1) * p.y + kWarp.at<double>(0, 2);
-      const double v = kWarp.at<double>(1, 0) * p.x + kWarp.at<double>(1, 1) * p.y + kWarp.at<double>(1, 2);
+      const double u =
+          kWarp.at<double>(0, 0) * p.x + kWarp.at<double>(0, 1) * p.y + kWarp.at<double>(0, 2);
+      const double v =
+          kWarp.at<double>(1, 0) * p.x + kWarp.at<double>(1, 1) * p.y + kWarp.at<double>(1, 2);
       right += std::hypot(u - q.x, v - q.y) < 4.0;
     }
     EXPECT_GE(right, 0.85 * n) << "photo " << i << ": " << right << " of " << n;

@@ -47,7 +47,8 @@ Vocabulary::Vocabulary(int branching, int levels, std::vector<VocabularyNode> no
       fail(where, "node " + std::to_string(i) + " has more children than the branching factor");
     const bool leaf = n.children.empty();
     if (leaf != (n.word >= 0))
-      fail(where, "node " + std::to_string(i) + (leaf ? " is a leaf without a word" : " is an inner node with a word"));
+      fail(where, "node " + std::to_string(i) +
+                      (leaf ? " is a leaf without a word" : " is an inner node with a word"));
     if (leaf) {
       if (n.word != static_cast<int32_t>(word_nodes_.size()))
         fail(where, "words are not numbered in node order at node " + std::to_string(i));

@@ -82,10 +82,11 @@ Vocabulary load_vocabulary(const std::string& path) {
   buffer << in.rdbuf();
   const std::string bytes = buffer.str();
   if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
-    fail(path, "not a depot vocabulary (no DEPOTVOC header; train one with `depot vocabulary train`)");
+    fail(path,
+         "not a depot vocabulary (no DEPOTVOC header; train one with `depot vocabulary train`)");
   if (bytes.size() < kHeaderBytes)
-    fail(path, "truncated vocabulary: " + std::to_string(bytes.size()) + " bytes, header alone is " +
-                   std::to_string(kHeaderBytes));
+    fail(path, "truncated vocabulary: " + std::to_string(bytes.size()) +
+                   " bytes, header alone is " + std::to_string(kHeaderBytes));
   size_t at = sizeof(kMagic);
   const auto version = take<uint32_t>(bytes, at);
   const auto descriptor_bytes = take<uint32_t>(bytes, at);

@@ -14,7 +14,8 @@ namespace {
 
 const std::string kWhere = "vocabulary training";
 
-BinaryDescriptor majority(const std::vector<BinaryDescriptor>& all, const std::vector<size_t>& members) {
+BinaryDescriptor majority(const std::vector<BinaryDescriptor>& all,
+                          const std::vector<size_t>& members) {
   std::array<int, 256> ones{};
   for (size_t m : members) {
     const BinaryDescriptor& d = all[m];

@@ -15,8 +15,8 @@
 namespace depot::slam {
 
 struct VocabularyTrainingParams {
-  int branching = 10;  // k: children per node
-  int levels = 5;      // depth of the leaves: up to k^levels words
+  int branching = 10;       // k: children per node
+  int levels = 5;           // depth of the leaves: up to k^levels words
   int max_iterations = 15;  // k-means rounds per node (stops earlier when stable)
   uint64_t seed = 1;
 };

@@ -16,10 +16,10 @@
 namespace depot::slam {
 
 struct RigidCorrespondence {
-  Eigen::Vector3d in_a, in_b;     // the point in camera A and in frame B
+  Eigen::Vector3d in_a, in_b;  // the point in camera A and in frame B
   Eigen::Vector2d pixel_a, pixel_b;
   Pose T_b_camera = Pose::Identity();  // frame B -> camera that saw pixel_b
-  double max_error_px = 4.0;      // per pair: grows with the keypoints' scale
+  double max_error_px = 4.0;           // per pair: grows with the keypoints' scale
 };
 
 struct RigidResult {

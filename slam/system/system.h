@@ -1,7 +1,7 @@
 #pragma once
 // The SLAM system: feed (rgb, depth, timestamp), get the camera pose and
-// tracking state. Owns the ORB extractor, the place-recognition index, the optional keypoint filter (the
-// dynamic-rejection seam), the tracker, the map and local mapping.
+// tracking state. Owns the ORB extractor, the place-recognition index, the optional keypoint filter
+// (the dynamic-rejection seam), the tracker, the map and local mapping.
 #include <deque>
 #include <memory>
 #include <vector>

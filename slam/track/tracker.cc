@@ -97,8 +97,7 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
   if (ok) {
     if (frame.reference) last_T_cr_ = frame.T_cw * frame.reference->T_cw.inverse();
     last_ = std::move(frame);
-  }
-  else
+  } else
     last_.timestamp = frame.timestamp;
   current_stats_ = nullptr;
   if (stats) *stats = local;

@@ -2,7 +2,8 @@
 // The tracking front end (ORB-SLAM2's Tracking for RGB-D): initialisation
 // from depth, constant-velocity motion model with projection matching,
 // fallback to the reference keyframe, local-map tracking, keyframe decision
-// and relocalisation anywhere in the map (place recognition). It locks the map while it works on a frame.
+// and relocalisation anywhere in the map (place recognition). It locks the map while it works on a
+// frame.
 #include <vector>
 
 #include "common/pose.h"

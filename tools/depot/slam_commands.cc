@@ -93,9 +93,10 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
     std::printf("%s keyframe %ld (t %.2f) with %ld, %d matches, moved %.3f m after %.1f m",
                 &l == &s.loops.front() ? " (" : "; ", l.keyframe, l.timestamp, l.matched, l.matches,
                 l.correction_m, l.path_m);
-  std::printf("%s, %d look-alike places refused; relocalisation median %.1f ms over %d lost "
-              "frames\n",
-              s.loops.empty() ? "" : ")", s.loops_refused, s.lost_ms, s.lost);
+  std::printf(
+      "%s, %d look-alike places refused; relocalisation median %.1f ms over %d lost "
+      "frames\n",
+      s.loops.empty() ? "" : ")", s.loops_refused, s.lost_ms, s.lost);
   if (a.options.rate_hz > 0) {
     std::printf("input %g Hz, run-ahead %s: %zu frames handled after their turn\n",
                 a.options.rate_hz, a.options.run_ahead ? "on" : "off", s.late_frames);

@@ -116,8 +116,8 @@ void train(const TrainArgs& a) {
       "vocabulary %s: %zu words (k %d, %d levels) from %zu descriptors of %zu images; "
       "%.1f s extracting, %.1f s clustering; %.1f MB; identity %08x\n",
       a.output.c_str(), vocabulary.n_words(), vocabulary.branching(), vocabulary.levels(), total,
-      images.size(), secs(t0, t1), secs(t1, t2),
-      static_cast<double>(fs::file_size(a.output)) / 1e6, slam::vocabulary_identity(vocabulary));
+      images.size(), secs(t0, t1), secs(t1, t2), static_cast<double>(fs::file_size(a.output)) / 1e6,
+      slam::vocabulary_identity(vocabulary));
 }
 
 void info(const std::string& path) {
@@ -139,8 +139,8 @@ void register_vocabulary_commands(CLI::App* slam_group) {
       "vocabulary", "Place-recognition vocabularies (bags of binary ORB words)");
   group->require_subcommand(1);
   auto a = std::make_shared<TrainArgs>();
-  CLI::App* train_cmd = group->add_subcommand(
-      "train", "Learn a vocabulary tree from image folders and TUM datasets");
+  CLI::App* train_cmd =
+      group->add_subcommand("train", "Learn a vocabulary tree from image folders and TUM datasets");
   train_cmd->add_option("-o,--output", a->output, "Vocabulary file to write")->required();
   train_cmd->add_option("--images", a->image_folders,
                         "Folder of .png/.jpg images (all of them, sorted by name); repeatable");
