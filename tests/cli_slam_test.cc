@@ -133,7 +133,7 @@ TEST(CliSlam, WritesOneRowPerKeypointConsistentWithTheStatistics) {
     }
     EXPECT_GE(depth, 0.0);
     EXPECT_FALSE(moving && boundary) << line;  // on a mover is never on its boundary
-    EXPECT_GT(instance, 0) << line;             // every pixel belongs to some instance
+    EXPECT_GT(instance, 0) << line;            // every pixel belongs to some instance
     seen[frame].first++;
     seen[frame].second += kept;
     on_moving += moving;
@@ -211,8 +211,8 @@ TEST(CliSlam, MaskedModeScoresBothWaysAndDrawsPictures) {
   const std::string mine = temp_path("mine");
   fs::create_directories(mine);
   std::ofstream(mine + "/notes.txt") << "mine";
-  DepotResult refused = depot("slam run " + d + " -o " + temp_path("t") +
-                              ".txt --mode masked -q --overlays " + mine);
+  DepotResult refused =
+      depot("slam run " + d + " -o " + temp_path("t") + ".txt --mode masked -q --overlays " + mine);
   EXPECT_NE(refused.code, 0);
   EXPECT_TRUE(fs::is_regular_file(mine + "/notes.txt"));
   DepotResult full =
@@ -229,6 +229,74 @@ TEST(CliSlam, MaskedModeScoresBothWaysAndDrawsPictures) {
   EXPECT_NE(key.code, 0);
   EXPECT_NE(key.output.find("unknown rejection setting 'mask.nonsense'"), std::string::npos)
       << key.output;
+}
+
+}  // namespace
+}  // namespace depot::test
+
+namespace depot::test {
+namespace {
+
+// `--vocabulary` on bad files, and `depot slam vocabulary train|info`.
+void expect_vocabulary_error(const std::string& vocabulary, const std::string& needle) {
+  const std::string dataset = render_small({"depot_static", 6, 160, false});
+  const std::string out = temp_path("traj") + ".txt";
+  DepotResult r = depot("slam run " + dataset + " -o " + out + " -q --vocabulary " + vocabulary);
+  EXPECT_NE(r.code, 0) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_EQ(r.output.rfind("depot: error: " + vocabulary, 0), 0u) << r.output;
+  EXPECT_NE(r.output.find(needle), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out)) << "no trajectory on failure";
+}
+
+std::string default_vocabulary_bytes() {
+  std::ifstream in(std::string(DEPOT_BINARY_DIR) + "/vocabulary/depot_orb.voc", std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+TEST(CliSlam, BadVocabularyFilesAreOneErrorLine) {
+  const std::string bytes = default_vocabulary_bytes();
+  ASSERT_GT(bytes.size(), 1000u) << "the build trains the default vocabulary";
+  expect_vocabulary_error(temp_path("missing") + ".voc", "no such vocabulary file");
+  const std::string truncated = temp_path("truncated") + ".voc";
+  std::ofstream(truncated, std::ios::binary) << bytes.substr(0, bytes.size() - 100);
+  expect_vocabulary_error(truncated, "truncated");
+  std::string wide_bytes = bytes;
+  wide_bytes[12] = 64;  // descriptor bytes: ORB-SLAM2's are 32, other binary features 64
+  const std::string wide = temp_path("wide") + ".voc";
+  std::ofstream(wide, std::ios::binary) << wide_bytes;
+  expect_vocabulary_error(wide, "64-byte descriptors");
+}
+
+TEST(CliSlam, TrainsAndDescribesAVocabulary) {
+  const std::string dataset = render_small({"depot_static", 6, 160, false});
+  const std::string voc = temp_path("trained") + ".voc";
+  DepotResult r =
+      depot("slam vocabulary train -o " + voc + " --images " + std::string(DEPOT_SHARED_DATA) +
+            "/photos --dataset " + dataset + " --dataset-every 2 --branching 6 --levels 3 -q");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("words (k 6, 3 levels)"), std::string::npos) << r.output;
+  DepotResult info = depot("slam vocabulary info " + voc);
+  ASSERT_EQ(info.code, 0) << info.output;
+  EXPECT_NE(info.output.find("branching 6, 3 levels"), std::string::npos) << info.output;
+  // The same inputs give the same file.
+  const std::string again = temp_path("again") + ".voc";
+  ASSERT_EQ(
+      depot("slam vocabulary train -o " + again + " --images " + std::string(DEPOT_SHARED_DATA) +
+            "/photos --dataset " + dataset + " --dataset-every 2 --branching 6 --levels 3 -q")
+          .code,
+      0);
+  std::ifstream a(voc, std::ios::binary), b(again, std::ios::binary);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(a), {}),
+            std::string(std::istreambuf_iterator<char>(b), {}));
+  // A folder without images fails before anything is written.
+  const std::string empty_dir = temp_path("no_images");
+  fs::create_directories(empty_dir);
+  const std::string none = temp_path("none") + ".voc";
+  DepotResult bad = depot("slam vocabulary train -o " + none + " --images " + empty_dir + " -q");
+  EXPECT_NE(bad.code, 0);
+  EXPECT_NE(bad.output.find("holds no .png/.jpg/.bmp images"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(none));
 }
 
 }  // namespace
