@@ -115,13 +115,18 @@ void write_text_file_atomic(const std::string& path, const std::string& text) {
   file.commit();
 }
 
-void write_tum_trajectory(const std::string& path, const std::vector<StampedPose>& poses,
-                          const std::string& header) {
+std::string format_tum_trajectory(const std::vector<StampedPose>& poses,
+                                  const std::string& header) {
   std::string text;
   if (!header.empty()) text += "# " + header + "\n";
   text += "# timestamp tx ty tz qx qy qz qw\n";
   for (const auto& p : poses) text += format_tum_pose(p) + "\n";
-  write_text_file_atomic(path, text);
+  return text;
+}
+
+void write_tum_trajectory(const std::string& path, const std::vector<StampedPose>& poses,
+                          const std::string& header) {
+  write_text_file_atomic(path, format_tum_trajectory(poses, header));
 }
 
 std::vector<StampedFile> read_file_list(const std::string& path) {

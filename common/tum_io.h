@@ -49,6 +49,10 @@ std::vector<double> read_timestamps(const std::string& path);
 
 // Formats one trajectory line (no newline), as write_tum_trajectory does.
 std::string format_tum_pose(const StampedPose& p);
+// The whole text write_tum_trajectory writes (for writers that stage several
+// files and commit them together).
+std::string format_tum_trajectory(const std::vector<StampedPose>& poses,
+                                  const std::string& header = "");
 
 // Writes text to path atomically: all of it or nothing.
 void write_text_file_atomic(const std::string& path, const std::string& text);

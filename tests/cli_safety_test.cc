@@ -133,6 +133,7 @@ TEST(NoRunWasted, SlamOutputsAreCheckedBeforeTheRun) {
   r = depot("slam run " + data + " -o " + traj + " --stats " + folder + " -q");
   expect_one_error_line(r, "is a folder");
   EXPECT_FALSE(fs::exists(traj));
+  EXPECT_FALSE(fs::exists(traj.substr(0, traj.size() - 4) + ".states.txt"));
   EXPECT_EQ(read_text(folder + "/notes.txt"), "my notes");
 }
 

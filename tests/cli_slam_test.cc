@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include "common/tum_io.h"
 #include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
 
@@ -25,6 +26,18 @@ std::string small_dataset() {
   return copy;
 }
 
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+void expect_one_error_line(const DepotResult& r, const std::string& needle) {
+  EXPECT_NE(r.code, 0) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_EQ(r.output.rfind("depot: error: ", 0), 0u) << r.output;
+  EXPECT_NE(r.output.find(needle), std::string::npos) << r.output;
+}
+
 void expect_error(const std::string& dataset, const std::string& needle) {
   const std::string out = temp_path("traj") + ".txt";
   DepotResult r = depot("slam run " + dataset + " -o " + out + " -q");
@@ -33,6 +46,7 @@ void expect_error(const std::string& dataset, const std::string& needle) {
   EXPECT_EQ(r.output.rfind("depot: error: ", 0), 0u) << r.output;
   EXPECT_NE(r.output.find(needle), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out)) << "no trajectory on failure";
+  EXPECT_FALSE(fs::exists(out.substr(0, out.size() - 4) + ".states.txt")) << "no states either";
 }
 
 std::string first_image(const std::string& dataset, const char* list) {
@@ -86,10 +100,55 @@ TEST(CliSlam, RunsAndWritesATumTrajectory) {
   const std::string out = temp_path("traj") + ".txt";
   DepotResult r = depot("slam run " + d + " -o " + out + " --mapping sync -q");
   ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find("tracked 30 frames (0 lost"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("tracked 30 of 30 frames (100.0 %; 0 lost"), std::string::npos)
+      << r.output;
+  // Every frame's state beside the trajectory; its tracked frames are the
+  // trajectory's.
+  const std::string states = out.substr(0, out.size() - 4) + ".states.txt";
+  EXPECT_NE(r.output.find("wrote " + out + " and " + states), std::string::npos) << r.output;
+  std::ifstream in(states);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line.rfind("# depot-slam (orb) of ", 0), 0u) << line;
+  int frames = 0, tracked = 0;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    ++frames;
+    const std::string state = line.substr(line.find(' ') + 1);
+    tracked += state == "NEW_MAP" || state == "OK" || state == "RELOCALIZED";
+    if (frames == 1) {
+      EXPECT_EQ(state, "NEW_MAP");
+    }
+  }
+  EXPECT_EQ(frames, 30);
+  EXPECT_EQ(tracked, static_cast<int>(read_tum_trajectory(out).size()));
   DepotResult ate = depot("eval ate " + d + "/groundtruth.txt " + out);
   EXPECT_EQ(ate.code, 0) << ate.output;
   EXPECT_NE(ate.output.find("rmse"), std::string::npos);
+  EXPECT_NE(ate.output.find("tracked share  100.0 % (30 of 30 frames given; states " + states),
+            std::string::npos)
+      << ate.output;
+}
+
+TEST(CliSlam, AteReportsTheTrackedShareOfAStatesFile) {
+  std::string d = render_small({"depot_static", 8, 320, false});
+  const std::string out = temp_path("traj") + ".txt";
+  ASSERT_EQ(depot("slam run " + d + " -o " + out + " --mapping sync -q").code, 0);
+  // Two frames given that never got a pose (e.g. before initialisation).
+  const std::string states = temp_path("states") + ".txt";
+  std::ofstream(states) << "# made up\n0.001 NOT_INITIALIZED\n0.002 LOST\n"
+                        << read_text(out.substr(0, out.size() - 4) + ".states.txt");
+  const std::string json = temp_path("ate") + ".json";
+  DepotResult ate = depot("eval ate " + d + "/groundtruth.txt " + out + " --states " + states +
+                          " --json " + json);
+  ASSERT_EQ(ate.code, 0) << ate.output;
+  EXPECT_NE(ate.output.find("tracked share  80.0 % (8 of 10 frames given"), std::string::npos)
+      << ate.output;
+  const std::string report = read_text(json);
+  EXPECT_NE(report.find("\"tracked_share\": 0.8"), std::string::npos) << report;
+  expect_one_error_line(
+      depot("eval ate " + d + "/groundtruth.txt " + out + " --states " + d + "/groundtruth.txt"),
+      "expected 2 fields (timestamp state)");
 }
 
 TEST(CliSlam, WritesOneRowPerKeypointConsistentWithTheStatistics) {

@@ -36,10 +36,10 @@ TEST_P(ScenarioRegression, MeetsItsBounds) {
   SlamOutcome orb = run_slam_mode(data, slam::RejectionMode::kOrb, true);
   const double rho = eval::improvement_percent(orb.ate_rmse, full.ate_rmse);
   std::printf(
-      "%s (%d frames): orb ATE %.4f m, full ATE %.4f m (%.1f %%), precision %.3f recall %.3f, lost "
-      "%d\n",
-      GetParam().c_str(), frames, orb.ate_rmse, full.ate_rmse, rho, full.score.precision(),
-      full.score.recall(), full.lost);
+      "%s (%d frames): orb ATE %.4f m (tracked %.1f %%), full ATE %.4f m (%.1f %%), precision "
+      "%.3f recall %.3f, lost %d, tracked %.1f %%\n",
+      GetParam().c_str(), frames, orb.ate_rmse, 100 * orb.tracked_share(), full.ate_rmse, rho,
+      full.score.precision(), full.score.recall(), full.lost, 100 * full.tracked_share());
   EXPECT_LT(full.ate_rmse, b["full_ate_max"].as<double>()) << "full ATE RMSE";
   if (b["improvement_min"]) {
     EXPECT_GT(rho, b["improvement_min"].as<double>()) << "Eq. 9 improvement of full";
@@ -47,19 +47,28 @@ TEST_P(ScenarioRegression, MeetsItsBounds) {
   EXPECT_GT(full.score.recall(), b["recall_min"].as<double>()) << "rejection recall";
   EXPECT_GT(full.score.precision(), b["precision_min"].as<double>()) << "rejection precision";
   EXPECT_LE(full.lost, b["max_lost"].as<int>()) << "lost frames";
+  // Honest trajectories: the poses ATE sees are the tracked frames, and
+  // every frame given is accounted for.
+  EXPECT_EQ(full.frames, static_cast<size_t>(frames));
+  EXPECT_EQ(full.trajectory_size, full.tracked);
+  EXPECT_GE(full.tracked_share(), b["tracked_share_min"].as<double>()) << "full tracked share";
   if (const YAML::Node m = b["masked"]) {
     // Our mode beyond boxes: precision with boundary points left out.
     slam::RejectionParams params;
     SlamOutcome masked = run_slam_mode(data, slam::RejectionMode::kMasked, false, params);
     std::printf(
-        "%s masked: ATE %.4f m, precision %.3f (boundary static %.3f) recall %.3f, lost %d\n",
+        "%s masked: ATE %.4f m, precision %.3f (boundary static %.3f) recall %.3f, lost %d, "
+        "tracked %.1f %%\n",
         GetParam().c_str(), masked.ate_rmse, masked.score.precision_without_boundary(),
-        masked.score.precision(), masked.score.recall(), masked.lost);
+        masked.score.precision(), masked.score.recall(), masked.lost, 100 * masked.tracked_share());
     EXPECT_LT(masked.ate_rmse, m["ate_max"].as<double>()) << "masked ATE RMSE";
     EXPECT_GT(masked.score.precision_without_boundary(), m["precision_min"].as<double>())
         << "masked precision";
     EXPECT_GT(masked.score.recall(), m["recall_min"].as<double>()) << "masked recall";
     EXPECT_LE(masked.lost, m["max_lost"].as<int>()) << "masked lost frames";
+    EXPECT_EQ(masked.trajectory_size, masked.tracked);
+    EXPECT_GE(masked.tracked_share(), m["tracked_share_min"].as<double>())
+        << "masked tracked share";
   }
 }
 

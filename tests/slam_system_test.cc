@@ -22,6 +22,7 @@ struct SlamRun {
   int lost = 0;
   int frames = 0;
   size_t trajectory_size = 0;
+  size_t tracked = 0;  // frames whose state says they have a pose
 };
 
 SlamRun run_slam(const std::string& dataset, bool threaded = false) {
@@ -41,6 +42,7 @@ SlamRun run_slam(const std::string& dataset, bool threaded = false) {
   system.finish();
   auto estimate = system.trajectory();
   run.trajectory_size = estimate.size();
+  for (const auto& s : system.frame_states()) run.tracked += slam::is_tracked(s.state);
   auto gt = read_tum_trajectory(dataset + "/groundtruth.txt");
   auto matched = eval::match_trajectories(gt, estimate, {}, "groundtruth", "estimate");
   run.ate_rmse = eval::compute_ate(matched).statistics.rmse;
@@ -52,6 +54,7 @@ TEST(SlamSystem, StaticDepotWithSensorNoiseBelowOneCentimetre) {
   SlamRun run = run_slam(data);
   EXPECT_EQ(run.lost, 0);
   EXPECT_EQ(run.trajectory_size, 240u);
+  EXPECT_EQ(run.tracked, 240u);
   EXPECT_LT(run.ate_rmse, 0.01);
   std::printf("depot_static 240 frames: ATE RMSE %.4f m, %d lost\n", run.ate_rmse, run.lost);
 }
@@ -86,9 +89,11 @@ TEST(SlamSystem, WalkingPeopleWithoutRejectionRunToTheEnd) {
   SlamRun run = run_slam(data, true);
   EXPECT_EQ(run.frames, 240);
   EXPECT_GT(run.trajectory_size, 200u);
+  EXPECT_EQ(run.trajectory_size, run.tracked) << "the trajectory holds the tracked frames";
   EXPECT_GT(run.ate_rmse, 0.0);
-  std::printf("walking_xyz without rejection: ATE RMSE %.4f m, %d lost frames\n", run.ate_rmse,
-              run.lost);
+  std::printf(
+      "walking_xyz without rejection: ATE RMSE %.4f m, %d lost frames, %zu of 240 tracked\n",
+      run.ate_rmse, run.lost, run.tracked);
 }
 
 // Frames handed over ahead take the ids their track() calls assign; tracking

@@ -2,6 +2,13 @@
 // The map: owns keyframes and map points (never freed while the map lives;
 // bad ones leave the active sets), with one mutex that tracking and local
 // mapping hold while they read or change it.
+//
+// Locking rule: mutex() guards the Map's sets and every field of every
+// KeyFrame and MapPoint it owns (poses, positions, observations,
+// covisibility, spanning tree, bad flags). Any thread that reads or writes
+// them holds it; the methods here and of KeyFrame / MapPoint do not lock
+// (their callers do). Pointers stay valid without the lock (nothing is
+// freed), but what they point to may not be read without it.
 #include <memory>
 #include <mutex>
 #include <set>

@@ -47,6 +47,11 @@ void MapPoint::replace(MapPoint* other) {
   other->update_descriptor();
 }
 
+MapPoint* follow_replacements(MapPoint* mp) {
+  while (mp && mp->bad) mp = mp->replaced_by;
+  return mp;
+}
+
 void MapPoint::update_descriptor() {
   std::vector<cv::Mat> descs;
   for (auto& [kf, idx] : observations)

@@ -27,6 +27,8 @@ class MapPoint {
   long first_keyframe_id;
   int visible = 1, found = 1;  // tracking statistics
   bool bad = false;
+  // Set when fusion merged this point into another (it is bad then); holders
+  // of MapPoint* outside keyframes follow it (follow_replacements).
   MapPoint* replaced_by = nullptr;
   long last_seen_frame = -1;  // bookkeeping for local-map search
   long local_map_for = -1;    // frame whose local map already holds the point
@@ -52,5 +54,12 @@ class MapPoint {
   // Transfers this point's observations to `other` and marks itself bad.
   void replace(MapPoint* other);
 };
+
+// The point that now stands for `mp`: `mp` itself while it is good, else the
+// end of its replaced_by chain (a point fused twice names its first survivor,
+// which names the second), or nullptr when the chain ends in a point culled
+// for good. Chains cannot cycle: only good points are fused, and a fused
+// point never turns good again. Caller holds the map lock.
+MapPoint* follow_replacements(MapPoint* mp);
 
 }  // namespace depot::slam

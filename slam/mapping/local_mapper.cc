@@ -1,8 +1,11 @@
 #include "slam/mapping/local_mapper.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <string>
 
+#include "common/error.h"
 #include "slam/match/orb_matcher.h"
 #include "slam/optimize/optimizer.h"
 #include "slam/place/keyframe_database.h"
@@ -21,6 +24,7 @@ LocalMapper::~LocalMapper() {
 void LocalMapper::insert_keyframe(KeyFrame* kf) {
   {
     std::lock_guard<std::mutex> lock(queue_mutex_);
+    if (failure_) return;  // nobody would process it
     queue_.push_back(kf);
     abort_ba_ = true;
   }
@@ -29,7 +33,23 @@ void LocalMapper::insert_keyframe(KeyFrame* kf) {
 
 bool LocalMapper::idle() const {
   std::lock_guard<std::mutex> lock(queue_mutex_);
-  return queue_.empty() && !busy_;
+  return failure_ || (queue_.empty() && !busy_);
+}
+
+void LocalMapper::throw_if_failed() const {
+  std::exception_ptr failure;
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    failure = failure_;
+  }
+  if (!failure) return;
+  try {
+    std::rethrow_exception(failure);
+  } catch (const std::exception& e) {
+    fail("local mapping", e.what());
+  } catch (...) {
+    fail("local mapping", "stopped by an unknown exception");
+  }
 }
 
 size_t LocalMapper::queued() const {
@@ -52,7 +72,7 @@ void LocalMapper::run_pending() {
       queue_.pop_front();
       abort_ba_ = !queue_.empty();
     }
-    process(kf);
+    if (!process_guarded(kf)) throw_if_failed();
   }
 }
 
@@ -110,12 +130,26 @@ void LocalMapper::thread_main() {
       busy_ = true;
       abort_ba_ = false;
     }
-    process(kf);
+    const bool ok = process_guarded(kf);
     busy_ = false;
+    if (!ok) return;  // the failure waits for throw_if_failed()
+  }
+}
+
+bool LocalMapper::process_guarded(KeyFrame* kf) {
+  try {
+    process(kf);
+    return true;
+  } catch (...) {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    failure_ = std::current_exception();
+    queue_.clear();
+    return false;
   }
 }
 
 void LocalMapper::process(KeyFrame* kf) {
+  size_t n_keyframes = 0;
   // The bag of words reads only the keyframe's own descriptors: no lock.
   if (places_) places_->describe(*kf);
   {
@@ -125,8 +159,9 @@ void LocalMapper::process(KeyFrame* kf) {
     cull_map_points(kf);
     create_new_map_points(kf);
     if (queued() == 0) search_in_neighbors(kf);
+    n_keyframes = map_.n_keyframes();
   }
-  if (queued() == 0 && map_.n_keyframes() > 2) {
+  if (queued() == 0 && n_keyframes > 2) {
     auto t0 = std::chrono::steady_clock::now();
     local_bundle_adjustment(kf, map_, &abort_ba_);
     std::lock_guard<std::mutex> lock(queue_mutex_);
@@ -143,12 +178,26 @@ void LocalMapper::process(KeyFrame* kf) {
 }
 
 void LocalMapper::process_new_keyframe(KeyFrame* kf) {
+  // Every later step indexes keypoints through map_points.
+  if (kf->map_points.size() != kf->features.size())
+    fail("keyframe " + std::to_string(kf->id),
+         "has " + std::to_string(kf->map_points.size()) + " map point slots for " +
+             std::to_string(kf->features.size()) + " keypoints");
   for (size_t i = 0; i < kf->map_points.size(); ++i) {
     MapPoint* mp = kf->map_points[i];
     if (!mp) continue;
     if (mp->bad) {
-      kf->erase_map_point(i);
-      continue;
+      // Fused while the keyframe waited in the queue: it sees the survivor,
+      // unless it holds that one already.
+      MapPoint* survivor = follow_replacements(mp);
+      const bool held = survivor && std::find(kf->map_points.begin(), kf->map_points.end(),
+                                              survivor) != kf->map_points.end();
+      if (!survivor || held || survivor->observations.count(kf)) {
+        kf->erase_map_point(i);
+        continue;
+      }
+      mp = survivor;
+      kf->add_map_point(mp, i);
     }
     if (!mp->observations.count(kf)) {
       mp->add_observation(kf, i);

@@ -2,11 +2,27 @@
 // Local mapping (ORB-SLAM2's LocalMapping): takes keyframes from tracking,
 // links their map points, culls weak new points, triangulates new points
 // with neighbour keyframes, fuses duplicates, runs local bundle adjustment
-// and removes redundant keyframes; keeps the place-recognition index. Runs in its own thread, or
-// synchronously (run_pending) for reproducible runs.
+// and removes redundant keyframes; keeps the place-recognition index. Runs in its own thread, or synchronously
+// (run_pending) for reproducible runs.
+//
+// Threads and locks:
+// - map.mutex() guards every keyframe and map point (and the Map's sets);
+//   the mapper takes it for each step that reads or changes them (local
+//   bundle adjustment takes it itself, around collecting and writing back).
+// - queue_mutex_ guards queue_, stats_ and failure_. It is taken after the
+//   map lock when both are held (never the other way), and held only
+//   briefly.
+// - recent_points_ belongs to whichever thread processes keyframes: the
+//   mapping thread (threaded) or the caller of run_pending (synchronous).
+//   reset() touches it only once the mapper is idle.
+// - An exception while processing a keyframe stops mapping: it is kept
+//   (failure_) and rethrown to the tracking side as one depot::Error by
+//   throw_if_failed() ("local mapping: <what>"); System::track() and
+//   finish() call it. A failed mapper counts as idle and drops new keyframes.
 #include <atomic>
 #include <condition_variable>
 #include <deque>
+#include <exception>
 #include <list>
 #include <mutex>
 #include <thread>
@@ -38,8 +54,12 @@ class LocalMapper : public KeyFrameSink {
   size_t queued() const override;
   void interrupt_ba() override { abort_ba_ = true; }
 
-  // Synchronous mode: processes every queued keyframe now.
+  // Synchronous mode: processes every queued keyframe now; a failure is
+  // thrown at once (as throw_if_failed).
   void run_pending();
+  // Throws depot::Error("local mapping: <what>") once processing a keyframe
+  // has thrown; again on every later call.
+  void throw_if_failed() const;
   // Waits until idle, then drops queued keyframes and recent points (after
   // the map was cleared).
   void reset();
@@ -56,6 +76,8 @@ class LocalMapper : public KeyFrameSink {
 
  private:
   void thread_main();
+  // process() with any exception kept in failure_; false when it threw.
+  bool process_guarded(KeyFrame* kf);
   void process(KeyFrame* kf);
   void process_new_keyframe(KeyFrame* kf);
   void cull_map_points(KeyFrame* kf);
@@ -76,6 +98,7 @@ class LocalMapper : public KeyFrameSink {
   KeyFrameSink* next_ = nullptr;
   std::list<MapPoint*> recent_points_;
   LocalMapperStats stats_;
+  std::exception_ptr failure_;
   std::thread thread_;
 };
 

@@ -78,6 +78,7 @@ void System::look_ahead(const cv::Mat& bgr, const cv::Mat& depth, double timesta
 }
 
 TrackResult System::track(const cv::Mat& bgr, const cv::Mat& depth, double timestamp) {
+  mapper_.throw_if_failed();
   const PinholeCamera& cam = settings_.camera;
   check_images(bgr, depth, next_frame_id_);
   if (!ahead_.empty()) {
@@ -123,7 +124,8 @@ TrackResult System::track(const cv::Mat& bgr, const cv::Mat& depth, double times
   }
   check_workers();
   if (tracker_.wants_reset()) {
-    // Lost right after start: begin a new map (ORB-SLAM2 does the same).
+    // Lost right after start: begin a new map (ORB-SLAM2 does the same). The
+    // frames tracked in the old map become ABANDONED.
     mapper_.reset();
     loop_closer_.reset();
     std::lock_guard<std::mutex> lock(map_.mutex());
@@ -150,6 +152,7 @@ void System::finish() {
     mapper_.run_pending();
     loop_closer_.run_pending();
   }
+  mapper_.throw_if_failed();
   check_workers();
 }
 
@@ -158,8 +161,14 @@ std::vector<StampedPose> System::trajectory() const {
   std::vector<StampedPose> out;
   for (const TrajectoryEntry& e : tracker_.trajectory()) {
     Pose T_wc;
-    if (resolve(e, T_wc)) out.push_back({e.timestamp, T_wc});
+    if (is_tracked(e.state) && resolve(e, T_wc)) out.push_back({e.timestamp, T_wc});
   }
+  return out;
+}
+
+std::vector<StampedFrameState> System::frame_states() const {
+  std::vector<StampedFrameState> out;
+  for (const TrajectoryEntry& e : tracker_.trajectory()) out.push_back({e.timestamp, e.state});
   return out;
 }
 

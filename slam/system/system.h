@@ -1,7 +1,15 @@
 #pragma once
 // The SLAM system: feed (rgb, depth, timestamp), get the camera pose and
-// tracking state. Owns the ORB extractor, the place-recognition index, the optional keypoint filter
-// (the dynamic-rejection seam), the tracker, the map and local mapping.
+// tracking state. Owns the ORB extractor, the place-recognition index, the
+// optional keypoint filter (the dynamic-rejection seam), the tracker, the map and local mapping.
+//
+// Threads and locks: one thread calls every method of a System (it is the
+// tracking thread); local mapping and loop closing may run in threads of their own. The map
+// (keyframes, points) is guarded by map.mutex(), which the tracker holds
+// for a whole frame and every reader here takes (see tracker.h and
+// local_mapper.h for who takes it when). An exception in the mapping thread
+// is rethrown by the next track() or finish() as one depot::Error
+// ("local mapping: ...").
 #include <deque>
 #include <memory>
 #include <vector>
@@ -55,11 +63,17 @@ class System {
   // frame has been tracked. Does nothing else without a filter.
   void look_ahead(const cv::Mat& bgr, const cv::Mat& depth, double timestamp);
   // Lets local mapping finish its queue (call before reading trajectories).
+  // Throws depot::Error when local mapping failed.
   void finish();
 
-  // Camera-to-world pose of every frame given so far (lost frames keep the
-  // last known pose; frames before initialisation are left out).
+  // Camera-to-world pose of every tracked frame (state NEW_MAP, OK or
+  // RELOCALIZED, tracking_state.h) in the current map. Frames without a pose
+  // (not initialised, lost, or tracked in a map a reset abandoned) are left
+  // out: frame_states() says what became of them.
   std::vector<StampedPose> trajectory() const;
+  // The state of every frame given so far, in order: one entry per track()
+  // call. Its tracked entries are the trajectory's frames.
+  std::vector<StampedFrameState> frame_states() const;
   std::vector<StampedPose> keyframe_trajectory() const;
   size_t n_keyframes() const;
   size_t n_map_points() const;

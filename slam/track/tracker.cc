@@ -43,23 +43,30 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
     last_.T_cw = last_T_cr_ * last_.reference->T_cw;
   bool ok = false;
   bool relocalized = false;
+  FrameState frame_state = FrameState::kNotInitialized;
   if (state_ == TrackingState::kNotInitialized) {
     ok = initialize(frame);
-    if (!ok) {
-      trajectory_.push_back({frame.timestamp, nullptr, Pose::Identity(), state_});
-      current_stats_ = nullptr;
-      if (stats) *stats = local;
-      return state_;
+    if (ok) {
+      frame_state = FrameState::kNewMap;
+      local.method = TrackingMethod::kInitialization;
+      local.new_keyframe = true;
+      local.inliers =
+          static_cast<int>(std::count_if(frame.map_points.begin(), frame.map_points.end(),
+                                         [](MapPoint* p) { return p != nullptr; }));
     }
-    local.new_keyframe = true;
-    local.inliers = static_cast<int>(std::count_if(frame.map_points.begin(), frame.map_points.end(),
-                                                   [](MapPoint* p) { return p != nullptr; }));
   } else {
+    follow_replaced_points_in_last_frame();
     if (state_ == TrackingState::kOk || state_ == TrackingState::kRelocalized) {
-      if (has_velocity_ && frame.id > last_reloc_frame_ + 1)
+      if (has_velocity_ && frame.id > last_reloc_frame_ + 1) {
+        local.method = TrackingMethod::kMotionModel;
         ok = track_motion_model(frame, local.matches);
-      if (!ok) ok = track_reference_keyframe(frame, local.matches);
+      }
+      if (!ok) {
+        local.method = TrackingMethod::kReferenceKeyFrame;
+        ok = track_reference_keyframe(frame, local.matches);
+      }
     } else {
+      local.method = TrackingMethod::kRelocalization;
       ok = relocalize(frame, local.matches);
       relocalized = ok;
     }
@@ -67,6 +74,8 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
     if (ok) ok = track_local_map(frame, local.inliers, local.local_points);
     state_ = ok ? (relocalized ? TrackingState::kRelocalized : TrackingState::kOk)
                 : TrackingState::kLost;
+    frame_state =
+        ok ? (relocalized ? FrameState::kRelocalized : FrameState::kOk) : FrameState::kLost;
     if (ok) {
       velocity_ = frame.T_cw * last_.T_cw.inverse();
       has_velocity_ = last_.has_pose;
@@ -82,18 +91,14 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
       frame.has_pose = false;
     }
   }
-  if (ok && frame.reference) {
-    trajectory_.push_back(
-        {frame.timestamp, frame.reference, frame.T_cw * frame.reference->T_cw.inverse(), state_});
-  } else if (!trajectory_.empty() && trajectory_.back().reference) {
-    // Lost: keep the last known pose (flagged), as ORB-SLAM2 does.
-    TrajectoryEntry e = trajectory_.back();
-    e.timestamp = frame.timestamp;
-    e.state = state_;
-    trajectory_.push_back(e);
-  } else {
-    trajectory_.push_back({frame.timestamp, nullptr, Pose::Identity(), state_});
-  }
+  // A lost frame has no pose: it is recorded, but not as a pose (the
+  // trajectory leaves it out).
+  if (ok && frame.reference)
+    trajectory_.push_back({frame.timestamp, frame.reference,
+                           frame.T_cw * frame.reference->T_cw.inverse(), frame_state});
+  else
+    trajectory_.push_back({frame.timestamp, nullptr, Pose::Identity(), frame_state});
+  reset_wanted_ = state_ == TrackingState::kLost && map_.n_keyframes() <= 5;
   if (ok) {
     if (frame.reference) last_T_cr_ = frame.T_cw * frame.reference->T_cw.inverse();
     last_ = std::move(frame);
@@ -104,14 +109,23 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
   return state_;
 }
 
+void Tracker::follow_replaced_points_in_last_frame() {
+  for (MapPoint*& mp : last_.map_points)
+    if (mp) mp = follow_replacements(mp);
+}
+
 void Tracker::reset() {
   state_ = TrackingState::kNotInitialized;
+  reset_wanted_ = false;
   last_ = Frame();
   has_velocity_ = false;
   reference_ = nullptr;
   local_keyframes_.clear();
   local_points_.clear();
-  for (TrajectoryEntry& e : trajectory_) e.reference = nullptr;
+  for (TrajectoryEntry& e : trajectory_) {
+    e.reference = nullptr;
+    if (is_tracked(e.state)) e.state = FrameState::kAbandoned;
+  }
 }
 
 bool Tracker::initialize(Frame& frame) {

@@ -2,8 +2,17 @@
 // The tracking front end (ORB-SLAM2's Tracking for RGB-D): initialisation
 // from depth, constant-velocity motion model with projection matching,
 // fallback to the reference keyframe, local-map tracking, keyframe decision
-// and relocalisation anywhere in the map (place recognition). It locks the map while it works on a
-// frame.
+// and relocalisation anywhere in the map (place recognition).
+//
+// Threads and locks: a Tracker is driven by one thread (the caller of
+// System::track), which owns every member below; no other thread touches
+// them. Keyframes and map points are shared with local mapping and guarded
+// by map.mutex(): track() holds it for the whole frame, reset() and every
+// reader of map state (trajectory resolution, wants_reset's keyframe count)
+// must be called with it held or read a value computed under it. The
+// mapper (KeyFrameSink) is called with the map lock held; its methods only
+// take its own queue lock, never the map's, so the order is always map
+// then queue.
 #include <vector>
 
 #include "common/pose.h"
@@ -28,7 +37,17 @@ struct TrackerParams {
   int relocalisation_candidates = 20;  // place-recognition candidates tried, best first
 };
 
+// How the frame's pose was first found (before local-map tracking).
+enum class TrackingMethod {
+  kNone,               // not initialised and no map started on this frame
+  kInitialization,     // a new map started on this frame
+  kMotionModel,        // constant velocity from the last frame, projection matching
+  kReferenceKeyFrame,  // descriptor matching against the reference keyframe
+  kRelocalization,     // tracking was lost: matched against recent keyframes
+};
+
 struct TrackingStats {
+  TrackingMethod method = TrackingMethod::kNone;  // the last one tried
   int matches = 0;  // after the first stage (motion model / reference / reloc)
   int inliers = 0;  // after local-map tracking
   int local_points = 0;
@@ -37,13 +56,14 @@ struct TrackingStats {
   double optimize_ms = 0;  // all pose optimisation of the frame
 };
 
-// One entry per frame for the trajectory: the pose relative to a reference
-// keyframe, so later corrections of that keyframe move the frame with it.
+// One entry per frame given: its state (tracking_state.h) and, for a tracked
+// frame, the pose relative to a reference keyframe, so later corrections of
+// that keyframe move the frame with it. Untracked frames have no reference.
 struct TrajectoryEntry {
   double timestamp = 0;
   KeyFrame* reference = nullptr;
   Pose T_cr = Pose::Identity();
-  TrackingState state = TrackingState::kNotInitialized;
+  FrameState state = FrameState::kNotInitialized;
 };
 
 class Tracker {
@@ -53,21 +73,30 @@ class Tracker {
   Tracker(Map& map, KeyFrameSink& mapper, const TrackerParams& params = {},
           KeyFrameDatabase* places = nullptr);
 
-  // Tracks a frame whose features are extracted (and filtered).
+  // Tracks a frame whose features are extracted (and filtered). Takes the map
+  // lock for the whole frame.
   TrackingState track(Frame frame, TrackingStats* stats = nullptr);
 
   TrackingState state() const { return state_; }
-  // True when tracking was lost while the map is still tiny (<= 5
+  // True when the last frame was lost while the map was still tiny (<= 5
   // keyframes): the system should reset and initialise again (ORB-SLAM2).
-  bool wants_reset() const { return state_ == TrackingState::kLost && map_.n_keyframes() <= 5; }
+  // Decided inside track() under the map lock (the mapper may cull
+  // keyframes meanwhile), so it needs no lock.
+  bool wants_reset() const { return reset_wanted_; }
   // Back to NOT_INITIALIZED; frames tracked so far leave the trajectory
-  // (they belong to the abandoned map). The caller clears the map.
+  // (they belong to the abandoned map: state ABANDONED). The caller holds
+  // the map lock and clears the map.
   void reset();
   const Frame& last_frame() const { return last_; }
+  // Every frame given so far, in order (tracked or not). Resolving a tracked
+  // entry's pose reads its reference keyframe: hold the map lock.
   const std::vector<TrajectoryEntry>& trajectory() const { return trajectory_; }
 
  private:
   bool initialize(Frame& frame);
+  // Points of the last frame that local mapping fused into others are
+  // replaced by their survivors (ORB-SLAM2's CheckReplacedInLastFrame).
+  void follow_replaced_points_in_last_frame();
   bool track_motion_model(Frame& frame, int& matches);
   bool track_reference_keyframe(Frame& frame, int& matches);
   bool relocalize(Frame& frame, int& matches);
@@ -84,6 +113,7 @@ class Tracker {
   TrackerParams params_;
   KeyFrameDatabase* places_;
   TrackingState state_ = TrackingState::kNotInitialized;
+  bool reset_wanted_ = false;
   Frame last_;
   Pose last_T_cr_ = Pose::Identity();  // last frame relative to its reference keyframe
   Pose velocity_ = Pose::Identity();

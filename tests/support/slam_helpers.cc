@@ -41,6 +41,9 @@ SlamOutcome run_slam_mode(const std::string& dataset, slam::RejectionMode mode, 
   system.finish();
   const auto estimate = system.trajectory();
   r.trajectory_size = estimate.size();
+  const auto states = system.frame_states();
+  r.frames = states.size();
+  for (const auto& s : states) r.tracked += slam::is_tracked(s.state);
   auto gt = read_tum_trajectory(dataset + "/groundtruth.txt");
   r.ate_rmse =
       eval::compute_ate(eval::match_trajectories(gt, estimate, {}, "gt", "est")).statistics.rmse;

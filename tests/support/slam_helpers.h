@@ -9,10 +9,13 @@
 namespace depot::test {
 
 struct SlamOutcome {
-  double ate_rmse = 0;
+  double ate_rmse = 0;  // over the tracked frames only
   eval::RejectionScore score;
   int lost = 0;
-  size_t trajectory_size = 0;
+  size_t frames = 0;           // frames given
+  size_t tracked = 0;          // frames with a pose (System::frame_states)
+  size_t trajectory_size = 0;  // == tracked
+  double tracked_share() const { return frames ? static_cast<double>(tracked) / frames : 0.0; }
 };
 
 // The simulated detector as `--detector sim` has it by default (the shipped

@@ -3,7 +3,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -16,7 +18,10 @@
 #include "eval/result_plots.h"
 #include "eval/rpe.h"
 #include "eval/trajectory_plot.h"
+#include "slam/io/frame_states_file.h"
 #include "tools/depot/commands.h"
+
+namespace fs = std::filesystem;
 
 namespace depot::cli {
 namespace {
@@ -31,6 +36,7 @@ struct CommonArgs {
 
 struct AteArgs {
   CommonArgs common;
+  std::string states_path;  // "" = the estimate's states file when it exists
   bool sim3 = false;
   double baseline_rmse = 0.0;
   CLI::Option* baseline_option = nullptr;  // tells whether --baseline-rmse was given
@@ -93,10 +99,31 @@ void check_outputs(const CommonArgs& args) {
   if (!args.plot_path.empty()) check_output_file(args.plot_path);
 }
 
+// The estimate's frame states: --states, or else the file `depot slam run`
+// writes beside the trajectory, when it is there. Empty path: none.
+std::string states_file(const AteArgs& args) {
+  if (!args.states_path.empty()) return args.states_path;
+  const std::string beside = slam::frame_states_path(args.common.estimate_path);
+  std::error_code ec;
+  return fs::is_regular_file(beside, ec) ? beside : "";
+}
+
 void run_ate(const AteArgs& args) {
   check_outputs(args.common);
   const eval::MatchedTrajectories matched = eval::load_matched_trajectories(
       args.common.reference_path, args.common.estimate_path, args.common.association);
+  // ATE only sees the frames with a pose; the states say how many were given.
+  const std::string states_path = states_file(args);
+  std::optional<slam::TrackedShare> tracked;
+  if (!states_path.empty()) {
+    tracked = slam::tracked_share(slam::read_frame_states(states_path));
+    if (tracked->tracked != matched.estimate_size)
+      std::fprintf(stderr,
+                   "depot: warning: %s: lists %zu tracked frames but %s has %zu poses (is it the "
+                   "states file of this trajectory?)\n",
+                   states_path.c_str(), tracked->tracked, args.common.estimate_path.c_str(),
+                   matched.estimate_size);
+  }
   eval::AteOptions options;
   options.alignment = args.sim3 ? eval::AlignmentKind::kSimilarity : eval::AlignmentKind::kRigid;
   const eval::AteResult ate = eval::compute_ate(matched, options);
@@ -109,6 +136,12 @@ void run_ate(const AteArgs& args) {
     report["baseline_rmse"] = args.baseline_rmse;
     report["improvement_percent"] = improvement;
   }
+  if (tracked) {
+    report["states"] = states_path;
+    report["frames_given"] = tracked->frames;
+    report["frames_tracked"] = tracked->tracked;
+    report["tracked_share"] = tracked->share();
+  }
   if (!args.common.json_path.empty()) eval::write_json_file(args.common.json_path, report);
   if (!args.common.plot_path.empty()) {
     eval::write_trajectory_plot_svg(args.common.plot_path, eval::ate_plot(matched, ate));
@@ -116,6 +149,9 @@ void run_ate(const AteArgs& args) {
 
   const eval::ErrorStatistics& s = ate.statistics;
   print_header("ATE", matched);
+  if (tracked)
+    std::printf("  tracked share  %.1f %% (%zu of %zu frames given; states %s)\n",
+                100.0 * tracked->share(), tracked->tracked, tracked->frames, states_path.c_str());
   std::printf("  alignment      %s, scale %.6g\n", eval::to_string(ate.alignment_kind).c_str(),
               ate.alignment.scale);
   std::printf("  translational error (m)\n");
@@ -173,6 +209,10 @@ void register_eval_commands(CLI::App& app) {
       "ate", "Absolute trajectory error after aligning the estimate (evo_ape -a)");
   add_common_options(ate, ate_args->common);
   ate->add_flag("--sim3", ate_args->sim3, "align with scale (Sim(3)) instead of SE(3)");
+  ate->add_option("--states", ate_args->states_path,
+                  "frame states of the estimate (`depot slam run` writes them beside the "
+                  "trajectory): also print the tracked share")
+      ->default_str("EST's states file (run.txt -> run.states.txt) when it exists");
   ate_args->baseline_option =
       ate->add_option("--baseline-rmse", ate_args->baseline_rmse,
                       "a baseline's ATE RMSE (m): also print the improvement, paper Eq. 9")

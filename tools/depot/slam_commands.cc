@@ -9,6 +9,7 @@
 #include "common/staged_file.h"
 #include "common/tum_io.h"
 #include "common/yaml_overrides.h"
+#include "slam/io/frame_states_file.h"
 #include "tools/depot/commands.h"
 #include "tools/depot/detector_options.h"
 #include "tools/runner/rejection_overlay.h"
@@ -61,8 +62,10 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
       a.options.rejection.person_mask == slam::RejectionParams::PersonMask::kDepth)
     fail("--segmenter", "has no effect with --person-mask depth (choose segmentation or both)");
   // Every output must be writable before a long run starts, not after it.
-  for (const std::string* path :
-       {&a.output, &a.keyframes, &a.options.stats_csv, &a.options.keypoints_csv})
+  const std::string states_path = slam::frame_states_path(a.output);
+  const std::string* outputs[] = {&a.output, &states_path, &a.keyframes, &a.options.stats_csv,
+                                  &a.options.keypoints_csv};
+  for (const std::string* path : outputs)
     if (!path->empty()) check_output_file(*path);
   if (!a.options.overlays.empty())
     check_replaceable(a.options.overlays, runner::overlay_folder_kind(), false);
@@ -71,23 +74,28 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
     std::fprintf(stderr, "depot slam run: %s, mode %s\n", a.options.dataset.c_str(),
                  a.options.mode.c_str());
   runner::RunSummary s = runner::run_sequence(a.options);
-  write_tum_trajectory(a.output, s.trajectory,
-                       "depot-slam trajectory (" + a.options.mode + ") of " + a.options.dataset);
+  // The trajectory and its states appear together: both staged, then committed.
+  const std::string header = "depot-slam (" + a.options.mode + ") of " + a.options.dataset;
+  StagedFile trajectory(a.output), states(states_path);
+  trajectory.stream() << format_tum_trajectory(s.trajectory, header + ": tracked frames only");
+  states.stream() << slam::format_frame_states(s.frame_states,
+                                               header + ": the state of every frame given");
+  trajectory.commit();
+  states.commit();
   if (!a.keyframes.empty())
     write_tum_trajectory(a.keyframes, s.keyframes_trajectory, "depot-slam keyframes");
   std::printf(
-      "tracked %zu frames (%d lost, %d relocalised) in mode %s: %zu keyframes, %zu map points; per "
-      "frame median %.1f "
-      "ms, p95 %.1f ms (extraction %.1f, tracking %.1f",
-      s.frames, s.lost, s.relocalized, a.options.mode.c_str(), s.keyframes, s.map_points,
-      s.median_ms, s.p95_ms, s.extract_ms, s.track_ms);
+      "tracked %zu of %zu frames (%.1f %%; %d lost, %d relocalised) in mode %s: %zu keyframes, %zu "
+      "map points; per frame median %.1f ms, p95 %.1f ms (extraction %.1f, tracking %.1f",
+      s.tracked, s.frames, 100.0 * s.tracked_share(), s.lost, s.relocalized, a.options.mode.c_str(),
+      s.keyframes, s.map_points, s.median_ms, s.p95_ms, s.extract_ms, s.track_ms);
   if (a.options.mode != "orb")
     std::printf(
         ", rejection %.1f incl. flow %.1f, waited %.1f (p95 %.1f) for the %s detector "
         "taking %.1f",
         s.filter_ms, s.flow_ms, s.wait_ms, s.wait_p95_ms,
         s.detector_name.empty() ? "(no)" : s.detector_name.c_str(), s.detect_ms);
-  std::printf("); wrote %s\n", a.output.c_str());
+  std::printf("); wrote %s and %s\n", a.output.c_str(), states_path.c_str());
   std::printf("loops closed: %zu", s.loops.size());
   for (const slam::LoopClosure& l : s.loops)
     std::printf("%s keyframe %ld (t %.2f) with %ld, %d matches, moved %.3f m after %.1f m",
@@ -179,7 +187,9 @@ void register_slam_commands(CLI::App& app) {
   run->add_option("dataset", args->options.dataset,
                   "TUM RGB-D folder (associations.txt or rgb.txt + depth.txt)")
       ->required();
-  run->add_option("-o,--output", args->output, "Trajectory file (every frame, camera-to-world)")
+  run->add_option("-o,--output", args->output,
+                  "Trajectory file (tracked frames, camera-to-world); the state of every frame "
+                  "goes beside it (run.txt -> run.states.txt)")
       ->required();
   run->add_option("--keyframes", args->keyframes, "Also write the keyframe trajectory here");
   run->add_option("--frames", args->frames, "Only the first N frames")

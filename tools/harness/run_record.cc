@@ -48,6 +48,7 @@ nlohmann::json to_json(const RunRecord& r) {
           {"error", r.error},
           {"frames", r.frames},
           {"tracked", r.tracked},
+          {"tracked_share", number(r.frames ? static_cast<double>(r.tracked) / r.frames : NAN)},
           {"lost", r.lost},
           {"keyframes", r.keyframes},
           {"ate",

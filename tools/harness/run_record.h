@@ -29,8 +29,9 @@ struct RunRecord {
   std::string error;  // why the run produced no trajectory (ok = false)
 
   int frames = 0;
-  int tracked = 0;  // frames in the final trajectory
-  int lost = 0;     // frames tracking reported lost
+  int tracked = 0;  // frames with a pose in the final trajectory (states.txt: NEW_MAP, OK,
+                    // RELOCALIZED); the JSON also holds tracked_share = tracked / frames
+  int lost = 0;     // frames tracking reported lost (no pose)
   int keyframes = 0;
   double ate_rmse = NAN, ate_mean = NAN, ate_median = NAN, ate_std = NAN, ate_max = NAN;  // m
   double rpe_delta_s = 1.0;

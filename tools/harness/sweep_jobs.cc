@@ -17,6 +17,7 @@
 #include "sim/pipeline/render_dataset.h"
 #include "sim/scenario/scenario_loader.h"
 #include "slam/detect/sim_detector_config.h"
+#include "slam/io/frame_states_file.h"
 #include "tools/runner/slam_runner.h"
 
 namespace fs = std::filesystem;
@@ -138,7 +139,9 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
 
   fs::create_directories(fs::path(layout.run_dir(job.id)).parent_path());
   static const OutputKind kRunFolder{
-      "sweep run", "result.json", {"result.json", "trajectory.txt", "stats.csv", "ate.svg"}};
+      "sweep run",
+      "result.json",
+      {"result.json", "trajectory.txt", "states.txt", "stats.csv", "ate.svg"}};
   StagedDirectory out(layout.run_dir(job.id), kRunFolder, /*overwrite=*/true);
   runner::RunOptions options;
   options.dataset = dataset;
@@ -153,7 +156,7 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
   try {
     const runner::RunSummary s = runner::run_sequence(options);
     r.frames = static_cast<int>(s.frames);
-    r.tracked = static_cast<int>(s.trajectory.size());
+    r.tracked = static_cast<int>(s.tracked);
     r.lost = s.lost;
     r.keyframes = static_cast<int>(s.keyframes);
     r.median_frame_ms = s.median_ms;
@@ -170,13 +173,15 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
       r.true_negative = s.score.true_negative;
     }
     write_tum_trajectory((fs::path(out.path()) / "trajectory.txt").string(), s.trajectory,
-                         "depot sweep run " + job.id);
+                         "depot sweep run " + job.id + ": tracked frames only");
+    write_text_file_atomic((fs::path(out.path()) / "states.txt").string(),
+                           slam::format_frame_states(s.frame_states, "depot sweep run " + job.id));
     add_accuracy(read_tum_trajectory((fs::path(dataset) / "groundtruth.txt").string()),
                  s.trajectory, (fs::path(out.path()) / "ate.svg").string(), r);
   } catch (const Error& e) {
     throw_if_interrupted(job.id);
-    // A run that never initialises is an outcome of the sweep, not a crash.
-    if (std::string(e.what()).find("never initialised") == std::string::npos) throw;
+    // A run that tracks no frame is an outcome of the sweep, not a crash.
+    if (std::string(e.what()).find(runner::kNoFrameTracked) == std::string::npos) throw;
     r.ok = false;
     r.error = e.what();
     r.frames = plan.spec.frames;

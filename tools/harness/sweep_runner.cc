@@ -58,6 +58,10 @@ void remove_dataset(const SweepLayout& layout, const std::string& id) {
   fs::remove_all(layout.dataset_dir(id), ec);
 }
 
+double tracked_percent(const RunRecord& r) {
+  return r.frames ? 100.0 * r.tracked / r.frames : NAN;
+}
+
 std::string describe(const SweepJob& job, const SweepLayout& layout) {
   char buf[256];
   if (job.kind == JobKind::kRender) {
@@ -70,12 +74,13 @@ std::string describe(const SweepJob& job, const SweepLayout& layout) {
       std::snprintf(buf, sizeof(buf), "%s: no trajectory (%s)", job.id.c_str(), r.error.c_str());
     else if (std::isfinite(r.precision))
       std::snprintf(buf, sizeof(buf),
-                    "%s: ATE %.4f m, precision %.2f (boundary static %.2f) recall %.2f, lost %d",
+                    "%s: ATE %.4f m, precision %.2f (boundary static %.2f) recall %.2f, tracked "
+                    "%.1f %%, lost %d",
                     job.id.c_str(), r.ate_rmse, r.precision_without_boundary, r.precision, r.recall,
-                    r.lost);
+                    tracked_percent(r), r.lost);
     else
-      std::snprintf(buf, sizeof(buf), "%s: ATE %.4f m, lost %d", job.id.c_str(), r.ate_rmse,
-                    r.lost);
+      std::snprintf(buf, sizeof(buf), "%s: ATE %.4f m, tracked %.1f %%, lost %d", job.id.c_str(),
+                    r.ate_rmse, tracked_percent(r), r.lost);
   }
   return buf;
 }

@@ -77,9 +77,10 @@ Table ablation_table(const SweepPlan& plan, const SweepSummary& s) {
       "ATE RMSE in m after SE(3) alignment, mean ± std over " + std::to_string(plan.spec.seeds) +
       " seed(s), " + std::to_string(plan.spec.frames) + " frames at " +
       std::to_string(plan.spec.width) +
-      " px. Moving px = share of pixels on moving objects (measured). ATE covers the frames "
-      "in each trajectory: a run that loses tracking for good has a short one (see the "
-      "tracked column of the rejection table). The paired difference is the compared mode's "
+      " px. Moving px = share of pixels on moving objects (measured). ATE covers the tracked "
+      "frames only (lost frames have no pose, as in ORB-SLAM2): read it beside the tracked "
+      "share (the tracked column of the rejection table); a run that loses tracking for good "
+      "has a short trajectory. The paired difference is the compared mode's "
       "ATE minus orb's on the same seed (mm, mean ± std; negative = better than orb), and t "
       "its paired t statistic: |t| under about 2 means the seeds show no difference. With "
       "masked and full both run, masked - full is the same on those two modes.";
@@ -196,8 +197,10 @@ Table rejection_table(const SweepPlan& plan, const SweepSummary& s) {
       "Keypoints rejected as dynamic vs keypoints on objects flagged moving by the "
       "simulator (precision, recall: mean ± std over seeds). Boundary points (centre on the "
       "background, FAST circle touching a mover) are left out of `precision` and counted as "
-      "static in `precision (boundary static)`; recall is the same both ways. tracked = frames "
-      "in the final trajectory; lost = frames tracking reported lost, summed over seeds.";
+      "static in `precision (boundary static)`; recall is the same both ways. tracked = share "
+      "of the frames given that have a pose in the final trajectory (mean over seeds; lost "
+      "frames and frames of a map abandoned by a reset have none); lost = frames tracking "
+      "reported lost, summed over seeds.";
   add_cell_columns(plan, t);
   t.columns.push_back({"mode"});
   t.columns.push_back({"precision", 3, true});
@@ -226,8 +229,10 @@ Table runs_table(const SweepPlan& plan, const SweepSummary& s) {
   Table t;
   t.title = "All runs";
   t.caption =
-      "One row per finished run; its folder runs/<id>/ holds trajectory.txt, stats.csv, "
-      "ate.svg and result.json. precision leaves boundary points out; precision (b. static) "
+      "One row per finished run; its folder runs/<id>/ holds trajectory.txt (the tracked "
+      "frames), states.txt (every frame's state), stats.csv, ate.svg and result.json. tracked "
+      "= frames with a pose / frames given. precision leaves boundary points out; precision (b. "
+      "static) "
       "counts them as static.";
   t.columns = {{"run"},
                {"seed"},

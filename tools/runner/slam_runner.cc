@@ -22,6 +22,7 @@
 #include "slam/detect/detector_factory.h"
 #include "slam/detect/sim_detector.h"
 #include "slam/detect/sim_detector_config.h"
+#include "slam/io/frame_states_file.h"
 #include "slam/io/settings.h"
 #include "slam/io/tum_sequence.h"
 #include "slam/system/system.h"
@@ -378,9 +379,18 @@ RunSummary run_sequence(const RunOptions& o) {
   system.finish();
   summary.frames = n;
   summary.trajectory = system.trajectory();
+  summary.frame_states = system.frame_states();
+  summary.tracked = slam::tracked_share(summary.frame_states).tracked;
   summary.keyframes_trajectory = system.keyframe_trajectory();
-  if (summary.trajectory.empty())
-    fail(o.dataset, "tracking never initialised (too few keypoints with depth?)");
+  if (summary.trajectory.empty()) {
+    const bool abandoned =
+        std::any_of(summary.frame_states.begin(), summary.frame_states.end(),
+                    [](const auto& f) { return f.state == slam::FrameState::kAbandoned; });
+    fail(o.dataset, std::string(kNoFrameTracked) + ": " +
+                        (abandoned ? "every map started was abandoned (lost within its first "
+                                     "keyframes)"
+                                   : "tracking never initialised (too few keypoints with depth?)"));
+  }
   summary.keyframes = system.n_keyframes();
   summary.map_points = system.n_map_points();
   summary.median_ms = percentile(total, 0.5);

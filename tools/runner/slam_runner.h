@@ -14,6 +14,7 @@
 #include "slam/detect/sim_detector_config.h"
 #include "slam/loop/loop_closer.h"
 #include "slam/reject/rejection_filter.h"
+#include "slam/track/tracking_state.h"
 
 namespace depot::runner {
 
@@ -63,9 +64,14 @@ struct RunOptions {
 void apply_rejection_setting(RunOptions& options, const YamlOverride& setting,
                              const std::string& where);
 
+// The problem run_sequence() names when no frame got a pose (an outcome a
+// sweep records, not a crash).
+inline constexpr const char* kNoFrameTracked = "no frame tracked";
+
 struct RunSummary {
-  size_t frames = 0;
-  int lost = 0, relocalized = 0;
+  size_t frames = 0;              // frames given to the system
+  size_t tracked = 0;             // of them, with a pose in the trajectory
+  int lost = 0, relocalized = 0;  // frames tracking reported lost / relocalised
   size_t keyframes = 0, map_points = 0;
   double median_ms = 0, p95_ms = 0, extract_ms = 0, track_ms = 0;
   double filter_ms = 0, wait_ms = 0, detect_ms = 0, flow_ms = 0;  // medians
@@ -77,12 +83,16 @@ struct RunSummary {
   // with run-ahead) had passed when the loop got to them: the tracker lagged.
   size_t late_frames = 0;
   double ba_ms_total = 0;
-  std::vector<StampedPose> trajectory;
+  std::vector<StampedPose> trajectory;                // the tracked frames only
+  std::vector<slam::StampedFrameState> frame_states;  // every frame given
   std::vector<StampedPose> keyframes_trajectory;
   bool scored = false;
   eval::RejectionScore score;  // with the boundary class (MotionTruth)
   std::string settings_source;
   std::string detector_name;
+
+  // Tracked frames / frames given.
+  double tracked_share() const { return frames ? static_cast<double>(tracked) / frames : 0.0; }
 };
 
 // The configuration file of a detector type when none is given: the shipped
@@ -116,6 +126,8 @@ struct RejectionSetup {
 };
 RejectionSetup make_rejection(const RunOptions& options, float scale_factor = 1.2f);
 
+// Throws depot::Error("<dataset>: no frame tracked: ...") when no frame got
+// a pose.
 RunSummary run_sequence(const RunOptions& options);
 
 }  // namespace depot::runner

@@ -1,0 +1,75 @@
+// The states file beside a trajectory: its name, its text, reading it back
+// and the tracked share.
+#include "slam/io/frame_states_file.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "common/error.h"
+
+namespace depot::slam {
+namespace {
+
+std::string temp_file(const std::string& name, const std::string& text) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("depot_states_test_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / name).string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(FrameStatesFile, SitsBesideTheTrajectory) {
+  EXPECT_EQ(frame_states_path("out/run.txt"), "out/run.states.txt");
+  EXPECT_EQ(frame_states_path("run.txt"), "run.states.txt");
+  EXPECT_EQ(frame_states_path("out/run.tum"), "out/run.tum.states.txt");
+  EXPECT_EQ(frame_states_path("run"), "run.states.txt");
+}
+
+TEST(FrameStatesFile, RoundTripsEveryState) {
+  const std::vector<StampedFrameState> states = {{1.0, FrameState::kNotInitialized},
+                                                 {1.1, FrameState::kAbandoned},
+                                                 {1.2, FrameState::kLost},
+                                                 {1.3, FrameState::kNewMap},
+                                                 {1.4, FrameState::kOk},
+                                                 {1.5, FrameState::kRelocalized}};
+  const std::string text = format_frame_states(states, "test run");
+  EXPECT_EQ(text.rfind("# test run\n# timestamp state", 0), 0u) << text;
+  EXPECT_NE(text.find("\n1.300000 NEW_MAP\n"), std::string::npos) << text;
+  const std::vector<StampedFrameState> back = read_frame_states(temp_file("all.txt", text));
+  ASSERT_EQ(back.size(), states.size());
+  for (size_t i = 0; i < states.size(); ++i) {
+    EXPECT_DOUBLE_EQ(back[i].timestamp, states[i].timestamp);
+    EXPECT_EQ(back[i].state, states[i].state);
+  }
+  const TrackedShare share = tracked_share(back);
+  EXPECT_EQ(share.frames, 6u);
+  EXPECT_EQ(share.tracked, 3u) << "NEW_MAP, OK and RELOCALIZED have poses";
+  EXPECT_DOUBLE_EQ(share.share(), 0.5);
+}
+
+TEST(FrameStatesFile, BadLinesNameFileAndLine) {
+  auto error_of = [](const std::string& text) {
+    try {
+      read_frame_states(temp_file("bad.txt", text));
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error_of("# c\n1.0 OK\n2.0 TRACKED\n").find("bad.txt:3: unknown state 'TRACKED'"),
+            std::string::npos);
+  EXPECT_NE(error_of("1.0 OK extra\n").find("bad.txt:1: expected 2 fields"), std::string::npos);
+  EXPECT_NE(error_of("1.0\n").find("bad.txt:1: expected 2 fields"), std::string::npos);
+  EXPECT_NE(error_of("x OK\n").find("bad.txt:1: 'x' is not a timestamp"), std::string::npos);
+  EXPECT_NE(error_of("2.0 OK\n1.0 OK\n").find("bad.txt:2: timestamps must increase"),
+            std::string::npos);
+  EXPECT_NE(error_of("# only a comment\n").find("no frames"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace depot::slam

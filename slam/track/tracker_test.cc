@@ -1,0 +1,190 @@
+// The tracker on exact turned views of the real TUM frame (known poses):
+// initialisation, the motion model, the reference-keyframe fallback, a lost
+// frame (no pose) and recovery, and following points fused by mapping.
+#include "slam/track/tracker.h"
+
+#include <filesystem>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "slam/feature/orb_extractor.h"
+#include "slam/mapping/local_mapper.h"
+#include "slam/place/keyframe_database.h"
+#include "slam/place/vocabulary_file.h"
+#include "tests/support/real_frame.h"
+
+namespace depot::slam {
+namespace {
+
+class TrackerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!std::filesystem::exists(test::real_frame_folder()))
+      GTEST_SKIP() << "shared data missing: " << test::real_frame_folder();
+    real_ = test::load_real_frame();
+  }
+
+  // Tracks the view turned by `yaw_deg` (synchronous mapping after it, as
+  // System does) and checks its pose when tracked.
+  TrackingStats track_view(double yaw_deg) {
+    const test::RealFrame view = test::turned_view(real_, camera_, test::turn(yaw_deg));
+    TrackingStats stats;
+    tracker_.track(make_frame(view.bgr, view.depth), &stats);
+    mapper_.run_pending();
+    if (tracker_.state() == TrackingState::kOk || tracker_.state() == TrackingState::kRelocalized)
+      expect_pose(yaw_deg);
+    return stats;
+  }
+
+  // A covered camera: nothing to see, no depth.
+  TrackingStats track_covered() {
+    TrackingStats stats;
+    tracker_.track(make_frame(cv::Mat(real_.bgr.size(), CV_8UC3, cv::Scalar::all(90)),
+                              cv::Mat(real_.depth.size(), CV_32F, cv::Scalar(0))),
+                   &stats);
+    mapper_.run_pending();
+    return stats;
+  }
+
+  // The map's world is the camera of the frame it started on.
+  void expect_pose(double yaw_deg) {
+    const Pose truth = test::turned_pose(test::turn(yaw_deg)) *
+                       test::turned_pose(test::turn(map_start_yaw_)).inverse();
+    const Pose& estimate = tracker_.last_frame().T_cw;
+    EXPECT_LT(test::rotation_error_deg(estimate, truth), 0.1) << "yaw " << yaw_deg;
+    EXPECT_LT(estimate.translation().norm(), 0.01) << "yaw " << yaw_deg;
+  }
+
+  Frame make_frame(const cv::Mat& bgr, const cv::Mat& depth) {
+    cv::Mat gray;
+    cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
+    std::vector<cv::KeyPoint> keypoints;
+    cv::Mat descriptors;
+    extractor_.extract(gray, cv::Mat(), keypoints, descriptors);
+    const long id = next_id_++;
+    return Frame(id, 1.0 + id / 30.0, Features(keypoints, descriptors, depth, camera_, &levels_));
+  }
+
+  std::vector<FrameState> states() const {
+    std::vector<FrameState> out;
+    for (const TrajectoryEntry& e : tracker_.trajectory()) out.push_back(e.state);
+    return out;
+  }
+
+  test::RealFrame real_;
+  PinholeCamera camera_;
+  ScaleLevels levels_ = ScaleLevels::make(8, 1.2f);
+  OrbExtractor extractor_{OrbParams{}};
+  Map map_;
+  KeyFrameDatabase places_{load_vocabulary_shared(default_vocabulary_path())};
+  LocalMapper mapper_{map_, false, &places_};
+  Tracker tracker_{map_, mapper_, TrackerParams{}, &places_};
+  long next_id_ = 0;
+  double map_start_yaw_ = 0;  // yaw of the view the current map started on
+};
+
+TEST_F(TrackerTest, StartsAMapThenFollowsTheCameraWithTheMotionModel) {
+  EXPECT_EQ(track_view(0).method, TrackingMethod::kInitialization);
+  EXPECT_EQ(tracker_.state(), TrackingState::kOk);
+  EXPECT_EQ(map_.n_keyframes(), 1u);
+  // No velocity yet after one frame: the reference keyframe.
+  EXPECT_EQ(track_view(1).method, TrackingMethod::kReferenceKeyFrame);
+  for (double yaw : {2.0, 3.0, 4.0, 5.0}) {
+    const TrackingStats stats = track_view(yaw);
+    EXPECT_EQ(stats.method, TrackingMethod::kMotionModel) << "yaw " << yaw;
+    EXPECT_GT(stats.matches, 100) << "yaw " << yaw;
+    EXPECT_EQ(tracker_.state(), TrackingState::kOk);
+  }
+  EXPECT_EQ(states(),
+            (std::vector<FrameState>{FrameState::kNewMap, FrameState::kOk, FrameState::kOk,
+                                     FrameState::kOk, FrameState::kOk, FrameState::kOk}));
+}
+
+TEST_F(TrackerTest, FallsBackToTheReferenceKeyframeWhenTheMotionModelFails) {
+  track_view(0);
+  track_view(2);
+  track_view(4);  // the motion model now predicts 6 degrees
+  ASSERT_EQ(tracker_.state(), TrackingState::kOk);
+  // The camera turned back instead: the prediction is 8 degrees (~75 px) off.
+  const TrackingStats stats = track_view(-2);
+  EXPECT_EQ(stats.method, TrackingMethod::kReferenceKeyFrame);
+  EXPECT_EQ(tracker_.state(), TrackingState::kOk);
+}
+
+TEST_F(TrackerTest, ALostFrameHasNoPoseAndTheCameraIsFoundAgain) {
+  track_view(0);
+  track_view(1);
+  track_view(2);
+  track_covered();
+  EXPECT_EQ(tracker_.state(), TrackingState::kLost);
+  EXPECT_TRUE(tracker_.wants_reset())
+      << "lost with a map of " << map_.n_keyframes() << " keyframes";
+  const TrajectoryEntry& lost = tracker_.trajectory().back();
+  EXPECT_EQ(lost.state, FrameState::kLost);
+  EXPECT_EQ(lost.reference, nullptr) << "a lost frame is not a pose";
+  // Still covered: still lost, and relocalisation is what it tries.
+  EXPECT_EQ(track_covered().method, TrackingMethod::kRelocalization);
+  EXPECT_EQ(tracker_.state(), TrackingState::kLost);
+  // Uncovered where it was: relocalised at the right pose.
+  EXPECT_EQ(track_view(1).method, TrackingMethod::kRelocalization);
+  EXPECT_EQ(tracker_.state(), TrackingState::kRelocalized);
+  EXPECT_FALSE(tracker_.wants_reset());
+  track_view(1.5);
+  EXPECT_EQ(tracker_.state(), TrackingState::kOk);
+  EXPECT_EQ(states(), (std::vector<FrameState>{
+                          FrameState::kNewMap, FrameState::kOk, FrameState::kOk, FrameState::kLost,
+                          FrameState::kLost, FrameState::kRelocalized, FrameState::kOk}));
+  for (const TrajectoryEntry& e : tracker_.trajectory())
+    EXPECT_EQ(e.reference != nullptr, is_tracked(e.state));
+}
+
+TEST_F(TrackerTest, ResetAbandonsTheFramesOfTheOldMap) {
+  track_view(0);
+  track_view(1);
+  track_covered();
+  ASSERT_TRUE(tracker_.wants_reset());
+  {
+    std::lock_guard<std::mutex> lock(map_.mutex());
+    map_.clear();
+    tracker_.reset();
+  }
+  EXPECT_FALSE(tracker_.wants_reset());
+  EXPECT_EQ(tracker_.state(), TrackingState::kNotInitialized);
+  map_start_yaw_ = 3;
+  track_view(3);
+  EXPECT_EQ(states(), (std::vector<FrameState>{FrameState::kAbandoned, FrameState::kAbandoned,
+                                               FrameState::kLost, FrameState::kNewMap}));
+  for (size_t i = 0; i < 3; ++i) EXPECT_EQ(tracker_.trajectory()[i].reference, nullptr);
+}
+
+TEST_F(TrackerTest, TheLastFrameFollowsPointsThatMappingFused) {
+  track_view(0);
+  track_view(1);
+  // Local mapping fuses every point of the last frame into a twin (as when
+  // it finds duplicates), between two frames.
+  size_t fused = 0;
+  {
+    std::lock_guard<std::mutex> lock(map_.mutex());
+    for (MapPoint* mp : tracker_.last_frame().map_points) {
+      if (!mp || mp->bad) continue;
+      MapPoint* twin = map_.create_map_point(mp->position, mp->reference);
+      mp->replace(twin);
+      twin->update_normal_and_depth();
+      ++fused;
+    }
+  }
+  ASSERT_GT(fused, 200u);
+  // The motion model matches the last frame's points: it must find the twins.
+  const TrackingStats stats = track_view(2);
+  EXPECT_EQ(stats.method, TrackingMethod::kMotionModel);
+  EXPECT_GT(stats.matches, 100);
+  for (MapPoint* mp : tracker_.last_frame().map_points) {
+    if (mp) {
+      EXPECT_FALSE(mp->bad);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace depot::slam
