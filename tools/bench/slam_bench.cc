@@ -99,10 +99,15 @@ int main(int argc, char** argv) {
       std::vector<double> total, extract, match, optimize, other, filter, wait, detect, mask,
           segment;
       int lost = 0;
+      std::vector<double> relocalise;  // track time of frames shown after a cover
+      int relocalised = 0, relocalise_tries = 0;
       double rss_start = 0, rss_early = 0, rss_end = 0;
       size_t kf_early = 0, kfs = 0, points = 0;
     };
-    auto measure = [&](const std::string& run_mode) {
+    // `probe_relocalisation`: after the run, the camera is covered for a
+    // frame and then shows an earlier frame of the sequence again (30 of
+    // them, spread over it): what a lost frame's relocalisation costs.
+    auto measure = [&](const std::string& run_mode, bool loop_closing, bool probe_relocalisation) {
       Measured m;
       depot::runner::RunOptions options;
       options.dataset = dataset;
@@ -112,7 +117,9 @@ int main(int argc, char** argv) {
       depot::runner::RejectionSetup rejection =
           depot::runner::make_rejection(options, settings.orb.scale_factor);
       depot::slam::RejectionFilter* filter = rejection.filter.get();
-      depot::slam::System system(settings, filter);
+      depot::slam::SlamSettings run_settings = settings;
+      run_settings.loop_closing = loop_closing;
+      depot::slam::System system(run_settings, filter);
       m.rss_start = rss_mb();
       cv::Mat bgr, depth;
       for (size_t i = 0; i < n; ++i) {
@@ -134,13 +141,27 @@ int main(int argc, char** argv) {
         if (i == n / 10) m.rss_early = rss_mb(), m.kf_early = system.n_keyframes();
       }
       system.finish();
+      if (probe_relocalisation) {
+        double t = sequence.entry(n - 1).rgb_timestamp;
+        const cv::Mat black = cv::Mat::zeros(bgr.size(), CV_8UC3);
+        const cv::Mat no_depth = cv::Mat::zeros(depth.size(), CV_32F);
+        for (size_t k = 0; k < n; k += std::max<size_t>(1, n / 30)) {
+          system.track(black, no_depth, t += 0.033);
+          sequence.load(k, bgr, depth);
+          const auto r = system.track(bgr, depth, t += 0.033);
+          m.relocalise.push_back(r.timing.track_ms);
+          ++m.relocalise_tries;
+          m.relocalised += r.state == depot::slam::TrackingState::kRelocalized;
+        }
+      }
       m.rss_end = rss_mb();
       m.kfs = system.n_keyframes();
       m.points = system.n_map_points();
       return m;
     };
-    const Measured base_run = measure("orb");
-    const Measured run = mode == "orb" ? base_run : measure(mode);
+    const Measured no_loops = measure("orb", false, false);
+    const Measured base_run = measure("orb", true, true);
+    const Measured run = mode == "orb" ? base_run : measure(mode, true, false);
     const double base = percentile(base_run.extract, 0.5);
     auto row = [&](const char* name, const std::vector<double>& v) {
       std::printf("  %-34s %10.2f %10.2f %11.2fx\n", name, percentile(v, 0.5), percentile(v, 0.95),
@@ -155,8 +176,29 @@ int main(int argc, char** argv) {
     row("pose optimisation", base_run.optimize);
     row("other tracking (local map, KF)", base_run.other);
     row("total per frame", base_run.total);
-    std::printf("  median tracking %.1f ms per frame (target < 25 ms at 640x480)\n",
-                percentile(base_run.total, 0.5));
+    std::printf("  median tracking %.1f ms per frame (target < 25 ms at 640x480); p95 / median %.2f\n",
+                percentile(base_run.total, 0.5),
+                percentile(base_run.total, 0.95) / percentile(base_run.total, 0.5));
+    std::printf(
+        "  loop closing on vs off (same run): tracking (matching + optimisation + other) median "
+        "%.2f vs %.2f ms: %.2fx; total per frame %.2f vs %.2f ms: %.2fx\n",
+        percentile(base_run.match, 0.5) + percentile(base_run.optimize, 0.5) +
+            percentile(base_run.other, 0.5),
+        percentile(no_loops.match, 0.5) + percentile(no_loops.optimize, 0.5) +
+            percentile(no_loops.other, 0.5),
+        (percentile(base_run.match, 0.5) + percentile(base_run.optimize, 0.5) +
+         percentile(base_run.other, 0.5)) /
+            (percentile(no_loops.match, 0.5) + percentile(no_loops.optimize, 0.5) +
+             percentile(no_loops.other, 0.5)),
+        percentile(base_run.total, 0.5), percentile(no_loops.total, 0.5),
+        percentile(base_run.total, 0.5) / percentile(no_loops.total, 0.5));
+    std::printf(
+        "  relocalisation after a covered frame (%d views of the sequence shown again): %d "
+        "relocalised; tracking time of such a frame median %.1f ms, p95 %.1f ms (%.2fx a tracked "
+        "frame's median)\n",
+        base_run.relocalise_tries, base_run.relocalised, percentile(base_run.relocalise, 0.5),
+        percentile(base_run.relocalise, 0.95),
+        percentile(base_run.relocalise, 0.5) / percentile(base_run.total, 0.5));
     std::printf(
         "  memory: RSS %.1f MB at start, %.1f MB after %zu frames (%zu keyframes), %.1f MB at the "
         "end (%zu "
