@@ -152,13 +152,22 @@ void LocalMapper::process(KeyFrame* kf) {
   size_t n_keyframes = 0;
   // The bag of words reads only the keyframe's own descriptors: no lock.
   if (places_) places_->describe(*kf);
+  // The map lock is taken step by step (and per neighbour while
+  // triangulating), not for the whole keyframe: tracking waits for at most
+  // one step, not for all of them.
   {
     std::lock_guard<std::mutex> lock(map_.mutex());
     process_new_keyframe(kf);
     if (places_ && !kf->bad) places_->add(kf);
-    cull_map_points(kf);
-    create_new_map_points(kf);
-    if (queued() == 0) search_in_neighbors(kf);
+  }
+  {
+    std::lock_guard<std::mutex> lock(map_.mutex());
+    if (!kf->bad) cull_map_points(kf);
+  }
+  create_new_map_points(kf);
+  {
+    std::lock_guard<std::mutex> lock(map_.mutex());
+    if (queued() == 0 && !kf->bad) search_in_neighbors(kf);
     n_keyframes = map_.n_keyframes();
   }
   if (queued() == 0 && n_keyframes > 2) {
@@ -241,13 +250,21 @@ void LocalMapper::cull_map_points(KeyFrame* kf) {
 }
 
 void LocalMapper::create_new_map_points(KeyFrame* kf) {
+  // Takes the map lock per neighbour (see process()).
   const Features& f1 = kf->features;
   const PinholeCamera& cam = f1.camera;
-  const Eigen::Vector3d c1 = kf->camera_center();
-  const Pose T1w = kf->T_cw;
   const double baseline = cam.bf / cam.fx;
-  for (KeyFrame* kf2 : kf->covisibles(10)) {
+  std::vector<KeyFrame*> neighbours;
+  {
+    std::lock_guard<std::mutex> lock(map_.mutex());
+    neighbours = kf->covisibles(10);
+  }
+  for (KeyFrame* kf2 : neighbours) {
     if (queued() > 0) return;  // more keyframes waiting: keep up with tracking
+    std::lock_guard<std::mutex> lock(map_.mutex());
+    if (kf->bad || kf2->bad) continue;
+    const Eigen::Vector3d c1 = kf->camera_center();
+    const Pose T1w = kf->T_cw;
     const Eigen::Vector3d c2 = kf2->camera_center();
     if ((c2 - c1).norm() < baseline) continue;
     std::vector<std::pair<size_t, size_t>> pairs;

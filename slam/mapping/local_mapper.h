@@ -2,13 +2,19 @@
 // Local mapping (ORB-SLAM2's LocalMapping): takes keyframes from tracking,
 // links their map points, culls weak new points, triangulates new points
 // with neighbour keyframes, fuses duplicates, runs local bundle adjustment
-// and removes redundant keyframes; keeps the place-recognition index. Runs in its own thread, or synchronously
-// (run_pending) for reproducible runs.
+// and removes redundant keyframes; keeps the place-recognition index and
+// hands finished keyframes on (loop closing). Runs in its own thread, or
+// synchronously (run_pending) for reproducible runs.
 //
 // Threads and locks:
 // - map.mutex() guards every keyframe and map point (and the Map's sets);
-//   the mapper takes it for each step that reads or changes them (local
-//   bundle adjustment takes it itself, around collecting and writing back).
+//   the mapper takes it for each step that reads or changes them, one step
+//   at a time (process the keyframe, cull points, triangulate with one
+//   neighbour, fuse, cull keyframes), so tracking never waits for more than
+//   one step; each step re-checks that its keyframes are not bad. Local
+//   bundle adjustment takes it itself, around collecting and writing back.
+// - paused_ (queue_mutex_): loop closing holds the thread between keyframes
+//   while it corrects the map (pause()/resume()).
 // - queue_mutex_ guards queue_, stats_ and failure_. It is taken after the
 //   map lock when both are held (never the other way), and held only
 //   briefly.

@@ -176,9 +176,10 @@ int main(int argc, char** argv) {
     row("pose optimisation", base_run.optimize);
     row("other tracking (local map, KF)", base_run.other);
     row("total per frame", base_run.total);
-    std::printf("  median tracking %.1f ms per frame (target < 25 ms at 640x480); p95 / median %.2f\n",
-                percentile(base_run.total, 0.5),
-                percentile(base_run.total, 0.95) / percentile(base_run.total, 0.5));
+    std::printf(
+        "  median tracking %.1f ms per frame (target < 25 ms at 640x480); p95 / median %.2f\n",
+        percentile(base_run.total, 0.5),
+        percentile(base_run.total, 0.95) / percentile(base_run.total, 0.5));
     std::printf(
         "  loop closing on vs off (same run): tracking (matching + optimisation + other) median "
         "%.2f vs %.2f ms: %.2fx; total per frame %.2f vs %.2f ms: %.2fx\n",
