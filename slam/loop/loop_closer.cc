@@ -248,20 +248,10 @@ bool LoopCloser::compute_transform(KeyFrame* kf, const std::vector<KeyFrame*>& c
       T_cw = rigid.T_ab;
       for (int k : rigid.inliers) inliers.push_back(keypoint_of[k]);
     } else {
-      std::vector<Eigen::Vector3d> world;
-      std::vector<Eigen::Vector2d> pixels;
-      std::vector<size_t> index;
-      for (size_t i = 0; i < found.size(); ++i) {
-        if (!found[i]) continue;
-        world.push_back(found[i]->position);
-        pixels.emplace_back(f.keypoints[i].pt.x, f.keypoints[i].pt.y);
-        index.push_back(i);
-      }
-      const PnpResult pnp =
-          solve_pnp_ransac(world, pixels, f.camera, 300, 4.0, params_.min_rigid_inliers);
+      const PnpResult pnp = solve_pnp_ransac(found, f, 300, 4.0, params_.min_rigid_inliers);
       if (!pnp.ok) continue;
       T_cw = pnp.T_cw;
-      for (int k : pnp.inliers) inliers.push_back(index[k]);
+      for (int i : pnp.inliers) inliers.push_back(static_cast<size_t>(i));
     }
     // Refine the pose against the inlier points (held fixed), as tracking does.
     std::fill(view.map_points.begin(), view.map_points.end(), nullptr);

@@ -3,6 +3,8 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 
+#include "slam/data/map_point.h"
+
 namespace depot::slam {
 
 PnpResult solve_pnp_ransac(const std::vector<Eigen::Vector3d>& world_points,
@@ -34,6 +36,23 @@ PnpResult solve_pnp_ransac(const std::vector<Eigen::Vector3d>& world_points,
   result.ok = true;
   result.T_cw = make_pose(r, t);
   result.inliers = inliers;
+  return result;
+}
+
+PnpResult solve_pnp_ransac(const std::vector<MapPoint*>& matches, const Features& features,
+                           int iterations, double max_error_px, int min_inliers) {
+  std::vector<Eigen::Vector3d> world;
+  std::vector<Eigen::Vector2d> pixels;
+  std::vector<size_t> keypoint;
+  for (size_t i = 0; i < matches.size(); ++i) {
+    if (!matches[i]) continue;
+    world.push_back(matches[i]->position);
+    pixels.emplace_back(features.keypoints[i].pt.x, features.keypoints[i].pt.y);
+    keypoint.push_back(i);
+  }
+  PnpResult result =
+      solve_pnp_ransac(world, pixels, features.camera, iterations, max_error_px, min_inliers);
+  for (int& k : result.inliers) k = static_cast<int>(keypoint[k]);
   return result;
 }
 

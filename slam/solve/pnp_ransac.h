@@ -7,8 +7,11 @@
 
 #include "common/pose.h"
 #include "slam/camera/pinhole_camera.h"
+#include "slam/data/features.h"
 
 namespace depot::slam {
+
+class MapPoint;
 
 struct PnpResult {
   bool ok = false;
@@ -18,6 +21,11 @@ struct PnpResult {
 
 PnpResult solve_pnp_ransac(const std::vector<Eigen::Vector3d>& world_points,
                            const std::vector<Eigen::Vector2d>& pixels, const PinholeCamera& camera,
+                           int iterations = 300, double max_error_px = 4.0, int min_inliers = 10);
+
+// The same from matches: matches[i] is the map point of keypoint i of
+// `features` (or null). The result's inliers are keypoint indices.
+PnpResult solve_pnp_ransac(const std::vector<MapPoint*>& matches, const Features& features,
                            int iterations = 300, double max_error_px = 4.0, int min_inliers = 10);
 
 }  // namespace depot::slam

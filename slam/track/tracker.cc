@@ -233,20 +233,11 @@ bool Tracker::relocalize(Frame& frame, int& matches) {
     }
     matches = std::max(matches, n);
     if (n < 15) continue;
-    std::vector<Eigen::Vector3d> world;
-    std::vector<Eigen::Vector2d> pixels;
-    std::vector<size_t> index;
-    for (size_t i = 0; i < found.size(); ++i) {
-      if (!found[i]) continue;
-      world.push_back(found[i]->position);
-      pixels.emplace_back(frame.features.keypoints[i].pt.x, frame.features.keypoints[i].pt.y);
-      index.push_back(i);
-    }
-    PnpResult pnp = solve_pnp_ransac(world, pixels, frame.features.camera);
+    const PnpResult pnp = solve_pnp_ransac(found, frame.features);
     if (!pnp.ok) continue;
     std::fill(frame.map_points.begin(), frame.map_points.end(), nullptr);
     std::fill(frame.outlier.begin(), frame.outlier.end(), false);
-    for (int k : pnp.inliers) frame.map_points[index[k]] = found[index[k]];
+    for (int i : pnp.inliers) frame.map_points[i] = found[i];
     frame.T_cw = pnp.T_cw;
     frame.has_pose = true;
     int good = timed_optimize(frame);
