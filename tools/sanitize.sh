@@ -50,7 +50,7 @@ bash tools/install-deps.sh
 supp="$here/tools/sanitizers"
 # The build runs the instrumented depot too (it trains the default
 # vocabulary), so the options are set for the build as well as the tests.
-export TSAN_OPTIONS="suppressions=$supp/tsan.supp second_deadlock_stack=1 history_size=4 ${TSAN_OPTIONS:-}"
+export TSAN_OPTIONS="suppressions=$supp/tsan.supp second_deadlock_stack=1 history_size=7 ${TSAN_OPTIONS:-}"
 export ASAN_OPTIONS="$(grep -v '^#' "$supp/asan.options" | paste -sd: -):${ASAN_OPTIONS:-}"
 export UBSAN_OPTIONS="suppressions=$supp/ubsan.supp print_stacktrace=1 halt_on_error=1 ${UBSAN_OPTIONS:-}"
 export LSAN_OPTIONS="suppressions=$supp/lsan.supp ${LSAN_OPTIONS:-}"
