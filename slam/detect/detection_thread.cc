@@ -131,7 +131,11 @@ void DetectionThread::run() {
       Job* job = find(index);  // a running job is never erased
       job->image.release();
       job->result = std::move(result);
-      job->error = error;
+      // Moved, not copied: the worker keeps no reference to the exception,
+      // so the waiter owns it alone once the lock is released (a copy kept
+      // here would be released after the waiter read and freed it, ordered
+      // only by exception_ptr's refcount inside libstdc++).
+      job->error = std::move(error);
       job->detect_ms = ms;
       job->person_mask = std::move(person_mask);
       job->segment_ms = segment_ms;

@@ -6,7 +6,10 @@
 // Threads: the caller's thread calls submit() and wait(); the worker thread
 // runs the detector. All shared state (the job queue, results, errors, the
 // stop flag) is guarded by `mutex_`; the detector and the optional person
-// segmenter are used by the worker only (after construction).
+// segmenter are used by the worker only (after construction). A job's
+// results (boxes, mask, error) are handed over by moving them into the job
+// under `mutex_`: the worker keeps no copy, so nothing it still holds is
+// shared with the waiter after the lock is released.
 #include <condition_variable>
 #include <deque>
 #include <exception>

@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# Sanitizer builds and their tests (README, "Sanitizers").
+#
+#   tools/sanitize.sh [thread|address] [ctest arguments...]
+#
+# thread (default; what CI runs after tools/test.sh): ThreadSanitizer build in
+#   build-tsan/, then `ctest -L slam` under it.
+# address: AddressSanitizer + UndefinedBehaviorSanitizer build in build-asan/,
+#   then the whole suite (not in CI: about 1.5 h on two cores).
+#
+# A sanitizer report makes the process exit non-zero (TSan/ASan exit code 66,
+# UBSan aborts), so the test that met it fails; the reports are in the test's
+# output (ctest --output-on-failure). Suppressions and options:
+# tools/sanitizers/. Extra arguments go to ctest (e.g. -R LocalMapper).
+set -euo pipefail
+here="$(cd "$(dirname "$0")/.." && pwd)"
+cd "$here"
+
+kind="${1:-thread}"
+[ $# -gt 0 ] && shift
+case "$kind" in
+  thread)
+    dir=build-tsan
+    # Left out (TSan makes them 15-25x slower, and they run on one thread,
+    # so it has nothing to check in them; the normal build runs them):
+    # - SimDetectorTest.*: the simulated detector's statistics on rendered
+    #   frames (~200 s each, 15 of them; no threads of ours but the
+    #   simulator's PNG writers);
+    # - the synchronous-mapping accuracy runs, > 10 min each: SlamSystem's
+    #   StaticDepot.. and RealHandHeldFr1Xyz.., SlamLoop's RelocalisesAgainst..
+    #   and TheLoopIsClosed.. (the patrol). The threaded runs stay:
+    #   SlamSystem.WalkingPeopleWithoutRejection.., SlamLoop.ThreadedMapping..
+    #   (mapping and loop closing threads), RejectSystem (detection thread),
+    #   CliSlam (depot slam run, threaded by default).
+    select=(-L slam -E '^(SimDetectorTest\.|SlamSystem\.(StaticDepot|RealHandHeld)|SlamLoop\.(RelocalisesAgainst|TheLoopIsClosed))')
+    ;;
+  address)
+    dir=build-asan
+    select=()
+    ;;
+  *)
+    echo "error: tools/sanitize.sh: '$kind' is not thread or address" >&2
+    exit 2
+    ;;
+esac
+
+bash tools/require-shared-data.sh
+bash tools/install-deps.sh
+
+supp="$here/tools/sanitizers"
+# The build runs the instrumented depot too (it trains the default
+# vocabulary), so the options are set for the build as well as the tests.
+export TSAN_OPTIONS="suppressions=$supp/tsan.supp second_deadlock_stack=1 history_size=7 ${TSAN_OPTIONS:-}"
+export ASAN_OPTIONS="$(grep -v '^#' "$supp/asan.options" | paste -sd: -):${ASAN_OPTIONS:-}"
+export UBSAN_OPTIONS="suppressions=$supp/ubsan.supp print_stacktrace=1 halt_on_error=1 ${UBSAN_OPTIONS:-}"
+export LSAN_OPTIONS="suppressions=$supp/lsan.supp ${LSAN_OPTIONS:-}"
+
+start=$(date +%s)
+cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDEPOT_BUILD_TESTS=ON \
+  -DDEPOT_BUILD_BENCH=OFF -DDEPOT_SANITIZE="$kind" >/dev/null
+cmake --build "$dir" -j"$(nproc)"
+built=$(date +%s)
+status=0
+ctest --test-dir "$dir" --output-on-failure -j"$(nproc)" "${select[@]}" "$@" || status=$?
+end=$(date +%s)
+echo "sanitize ($kind): build $((built - start)) s, tests $((end - built)) s"
+exit "$status"
