@@ -91,6 +91,8 @@ SlamSettings load_settings(const std::string& path, const SlamSettings& defaults
   lc.min_loop_matches = read<int>(loops, "min_loop_matches", lc.min_loop_matches, path, 10, 10000);
   lc.keyframes_between_loops =
       read<int>(loops, "keyframes_between_loops", lc.keyframes_between_loops, path, 1, 100000);
+  lc.global_ba_iterations =
+      read<int>(loops, "global_ba_iterations", lc.global_ba_iterations, path, 0, 1000);
   const YAML::Node mapping = root["mapping"];
   if (mapping && mapping["threaded"]) s.threaded_mapping = mapping["threaded"].as<bool>();
   return s;

@@ -40,106 +40,59 @@ Frame frame_view(const KeyFrame& kf) {
 
 LoopCloser::LoopCloser(Map& map, KeyFrameDatabase& places, LocalMapper& mapper, bool threaded,
                        const LoopCloserParams& params)
-    : map_(map), places_(places), mapper_(mapper), threaded_(threaded), params_(params) {
-  if (threaded_) thread_ = std::thread([this] { thread_main(); });
-}
+    : map_(map),
+      places_(places),
+      mapper_(mapper),
+      params_(params),
+      global_(map, mapper, threaded, params.global_ba_iterations),
+      worker_(threaded, [this](KeyFrame* kf) { process(kf); }) {}
 
 LoopCloser::~LoopCloser() {
   stop();
 }
 
 void LoopCloser::insert_keyframe(KeyFrame* kf) {
-  {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    queue_.push_back(kf);
-  }
-  cv_.notify_one();
+  worker_.push(kf);
 }
 
 bool LoopCloser::idle() const {
-  std::lock_guard<std::mutex> lock(queue_mutex_);
-  return (queue_.empty() && !busy_) || failure_;
+  return worker_.idle() && !global_.running();
 }
 
 size_t LoopCloser::queued() const {
-  std::lock_guard<std::mutex> lock(queue_mutex_);
-  return queue_.size();
+  return worker_.queued();
 }
 
 std::exception_ptr LoopCloser::failure() const {
-  std::lock_guard<std::mutex> lock(queue_mutex_);
-  return failure_;
+  if (std::exception_ptr e = worker_.failure()) return e;
+  return global_.failure();
 }
 
 int LoopCloser::refused() const {
-  std::lock_guard<std::mutex> lock(queue_mutex_);
+  std::lock_guard<std::mutex> lock(stats_mutex_);
   return implausible_;
 }
 
 std::vector<LoopClosure> LoopCloser::closures() const {
-  std::lock_guard<std::mutex> lock(queue_mutex_);
+  std::lock_guard<std::mutex> lock(stats_mutex_);
   return closures_;
 }
 
 void LoopCloser::run_pending() {
-  while (true) {
-    KeyFrame* kf = nullptr;
-    {
-      std::lock_guard<std::mutex> lock(queue_mutex_);
-      if (queue_.empty()) return;
-      kf = queue_.front();
-      queue_.pop_front();
-    }
-    process(kf);
-  }
+  worker_.run_pending();
 }
 
 void LoopCloser::reset() {
-  while (true) {
-    {
-      std::lock_guard<std::mutex> lock(queue_mutex_);
-      queue_.clear();
-      if (!busy_) break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
+  worker_.clear();
+  global_.abort();
   std::lock_guard<std::mutex> map_lock(map_.mutex());
   consistent_groups_.clear();
   last_loop_keyframe_ = -1;
 }
 
 void LoopCloser::stop() {
-  if (!threaded_ || !thread_.joinable()) return;
-  {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    stop_ = true;
-  }
-  cv_.notify_one();
-  thread_.join();
-}
-
-void LoopCloser::thread_main() {
-  while (true) {
-    KeyFrame* kf = nullptr;
-    {
-      std::unique_lock<std::mutex> lock(queue_mutex_);
-      cv_.wait(lock, [&] { return stop_ || !queue_.empty(); });
-      if (queue_.empty()) return;
-      kf = queue_.front();
-      queue_.pop_front();
-      busy_ = true;
-    }
-    try {
-      process(kf);
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(queue_mutex_);
-      failure_ = std::current_exception();
-      queue_.clear();
-      busy_ = false;
-      return;
-    }
-    busy_ = false;
-  }
+  worker_.stop();
+  global_.wait();
 }
 
 void LoopCloser::process(KeyFrame* kf) {
@@ -150,7 +103,9 @@ void LoopCloser::process(KeyFrame* kf) {
     if (kf->bad || !detect(kf, candidates)) return;
     if (!compute_transform(kf, candidates, loop)) return;
   }
-  correct(kf, loop);
+  // A running global adjustment solves a map this correction changes.
+  global_.abort();
+  if (correct(kf, loop) && params_.global_ba_iterations > 0) global_.start();
 }
 
 bool LoopCloser::detect(KeyFrame* kf, std::vector<KeyFrame*>& out) {
@@ -278,7 +233,7 @@ bool LoopCloser::compute_transform(KeyFrame* kf, const std::vector<KeyFrame*>& c
     for (MapPoint* mp : view.map_points) n += mp != nullptr;
     if (n < params_.min_loop_matches) continue;
     if (!plausible_correction(*kf, *candidate, view.T_cw)) {
-      std::lock_guard<std::mutex> qlock(queue_mutex_);
+      std::lock_guard<std::mutex> qlock(stats_mutex_);
       ++implausible_;
       continue;
     }
@@ -318,13 +273,13 @@ bool LoopCloser::plausible_correction(const KeyFrame& kf, const KeyFrame& matche
          turned <= params_.max_rotation_rad + params_.rotation_per_m * path;
 }
 
-void LoopCloser::correct(KeyFrame* kf, Loop& loop) {
+bool LoopCloser::correct(KeyFrame* kf, Loop& loop) {
   mapper_.pause();
   {
     std::lock_guard<std::mutex> lock(map_.mutex());
     if (kf->bad || loop.matched->bad) {
       mapper_.resume();
-      return;
+      return false;
     }
     kf->update_connections();
     std::vector<KeyFrame*> connected = kf->covisibles();
@@ -381,11 +336,12 @@ void LoopCloser::correct(KeyFrame* kf, Loop& loop) {
     kf->loop_edges.insert(loop.matched);
     loop.matched->loop_edges.insert(kf);
     last_loop_keyframe_ = kf->id;
-    std::lock_guard<std::mutex> qlock(queue_mutex_);
+    std::lock_guard<std::mutex> qlock(stats_mutex_);
     closures_.push_back({kf->id, loop.matched->id, kf->timestamp, loop.n_matches, moved_m,
                          path_between(map_, loop.matched->id, kf->id)});
   }
   mapper_.resume();
+  return true;
 }
 
 void LoopCloser::optimize_essential_graph(

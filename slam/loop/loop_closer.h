@@ -11,26 +11,28 @@
 //      moved to the loop's pose with their points, duplicate points fused,
 //      and the essential graph (spanning tree, loop edges, strong
 //      covisibility) optimised; every point moves with its keyframe. Frames'
-//      trajectory entries hang off keyframes and follow.
+//      trajectory entries hang off keyframes and follow;
+//   4. global bundle adjustment of the whole map (GlobalAdjuster, its own
+//      thread; a newer loop aborts it).
 //
-// Threading: in threaded mode the closer runs in its own thread, fed by
-// local mapping. It holds the map mutex while it detects, computes and
-// corrects; it pauses local mapping (LocalMapper::pause) before correcting,
-// so no bundle adjustment writes back poses computed before the
-// correction. Its queue and statistics have their own mutex. In synchronous
-// mode run_pending() does the work on the caller's thread.
-#include <atomic>
-#include <condition_variable>
-#include <deque>
+// Threading: in threaded mode the closer runs in its own thread (a
+// KeyFrameWorker), fed by local mapping. It holds the map mutex while it
+// detects, computes and corrects; it pauses local mapping
+// (LocalMapper::pause) before correcting, so no bundle adjustment writes
+// back poses computed before the correction. stats_mutex_ guards the
+// statistics (closures_, refused_). The detection state belongs to the
+// worker's thread. In synchronous mode run_pending() does the work on the
+// caller's thread.
 #include <exception>
 #include <map>
 #include <mutex>
 #include <set>
-#include <thread>
 #include <vector>
 
 #include "slam/data/map.h"
+#include "slam/loop/global_adjuster.h"
 #include "slam/mapping/keyframe_sink.h"
+#include "slam/mapping/keyframe_worker.h"
 
 namespace depot::slam {
 
@@ -54,6 +56,9 @@ struct LoopCloserParams {
   double drift_per_m = 0.05;
   double max_rotation_rad = 0.1;
   double rotation_per_m = 0.01;
+  // Bundle adjustment of the whole map after each loop (its own thread);
+  // 0 iterations: none.
+  int global_ba_iterations = 10;
 };
 
 // One closed loop.
@@ -81,23 +86,26 @@ class LoopCloser : public KeyFrameSink {
   void run_pending();
   // Forgets queued keyframes and detection state (after the map was cleared).
   void reset();
-  // Threaded mode: finishes the queue and stops the thread.
+  // Threaded mode: finishes the queue and a running global adjustment, and
+  // stops the threads.
   void stop();
-  // The first exception the thread threw (null when none); the thread stops then.
+  // The first exception the thread (or the global adjustment) threw (null
+  // when none); the thread stops then.
   std::exception_ptr failure() const;
   std::vector<LoopClosure> closures() const;
+  // Global bundle adjustments applied.
+  int global_adjustments() const { return global_.completed(); }
   // Loops found but refused as implausible corrections (look-alike places).
   int refused() const;
 
  private:
   struct Loop;
-  void thread_main();
   void process(KeyFrame* kf);
   bool detect(KeyFrame* kf, std::vector<KeyFrame*>& candidates);
   bool compute_transform(KeyFrame* kf, const std::vector<KeyFrame*>& candidates, Loop& loop);
   // Whether moving kf to T_cw is drift it could have gathered since `matched`.
   bool plausible_correction(const KeyFrame& kf, const KeyFrame& matched, const Pose& T_cw) const;
-  void correct(KeyFrame* kf, Loop& loop);
+  bool correct(KeyFrame* kf, Loop& loop);  // false when a keyframe turned bad
   void optimize_essential_graph(KeyFrame* kf, KeyFrame* matched,
                                 const std::map<KeyFrame*, Pose, ById>& original,
                                 const std::map<KeyFrame*, std::set<KeyFrame*, ById>, ById>& links);
@@ -105,22 +113,17 @@ class LoopCloser : public KeyFrameSink {
   Map& map_;
   KeyFrameDatabase& places_;
   LocalMapper& mapper_;
-  bool threaded_;
   LoopCloserParams params_;
-  int implausible_ = 0;  // loops refused by plausible_correction (queue_mutex_)
   // Detection state: groups of keyframes and for how many consecutive
   // keyframes each has been seen (ORB-SLAM2's consistent groups).
   std::vector<std::pair<std::set<KeyFrame*, ById>, int>> consistent_groups_;
   long last_loop_keyframe_ = -1;
 
-  mutable std::mutex queue_mutex_;
-  std::condition_variable cv_;
-  std::deque<KeyFrame*> queue_;
-  std::atomic<bool> busy_{false};
-  bool stop_ = false;
-  std::exception_ptr failure_;
+  mutable std::mutex stats_mutex_;
   std::vector<LoopClosure> closures_;
-  std::thread thread_;
+  int implausible_ = 0;  // loops refused by plausible_correction
+  GlobalAdjuster global_;
+  KeyFrameWorker worker_;  // last: its thread may call process() at once
 };
 
 }  // namespace depot::slam

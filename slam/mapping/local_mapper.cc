@@ -13,35 +13,22 @@
 namespace depot::slam {
 
 LocalMapper::LocalMapper(Map& map, bool threaded, KeyFrameDatabase* places)
-    : map_(map), threaded_(threaded), places_(places) {
-  if (threaded_) thread_ = std::thread([this] { thread_main(); });
-}
+    : map_(map), places_(places), worker_(threaded, [this](KeyFrame* kf) { process(kf); }) {}
 
 LocalMapper::~LocalMapper() {
   stop();
 }
 
 void LocalMapper::insert_keyframe(KeyFrame* kf) {
-  {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    if (failure_) return;  // nobody would process it
-    queue_.push_back(kf);
-    abort_ba_ = true;
-  }
-  cv_.notify_one();
+  if (worker_.push(kf)) abort_ba_ = true;  // a new keyframe matters more than BA
 }
 
 bool LocalMapper::idle() const {
-  std::lock_guard<std::mutex> lock(queue_mutex_);
-  return failure_ || (queue_.empty() && !busy_);
+  return worker_.idle();
 }
 
 void LocalMapper::throw_if_failed() const {
-  std::exception_ptr failure;
-  {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    failure = failure_;
-  }
+  const std::exception_ptr failure = worker_.failure();
   if (!failure) return;
   try {
     std::rethrow_exception(failure);
@@ -53,102 +40,46 @@ void LocalMapper::throw_if_failed() const {
 }
 
 size_t LocalMapper::queued() const {
-  std::lock_guard<std::mutex> lock(queue_mutex_);
-  return queue_.size();
+  return worker_.queued();
 }
 
 LocalMapperStats LocalMapper::stats() const {
-  std::lock_guard<std::mutex> lock(queue_mutex_);
+  std::lock_guard<std::mutex> lock(stats_mutex_);
   return stats_;
 }
 
 void LocalMapper::run_pending() {
-  while (true) {
-    KeyFrame* kf = nullptr;
-    {
-      std::lock_guard<std::mutex> lock(queue_mutex_);
-      if (queue_.empty()) return;
-      kf = queue_.front();
-      queue_.pop_front();
-      abort_ba_ = !queue_.empty();
-    }
-    if (!process_guarded(kf)) throw_if_failed();
+  try {
+    worker_.run_pending();
+  } catch (...) {
+    throw_if_failed();
+    throw;
   }
 }
 
 void LocalMapper::reset() {
-  if (!threaded_) {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    queue_.clear();
-  }
-  while (!idle()) {
-    {
-      std::lock_guard<std::mutex> lock(queue_mutex_);
-      queue_.clear();
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
+  worker_.clear();
   recent_points_.clear();
 }
 
 void LocalMapper::pause() {
-  {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    paused_ = true;
-  }
-  abort_ba_ = true;
-  while (busy_) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  worker_.request_pause();
+  abort_ba_ = true;  // after the request: process() reads both, in that order
+  worker_.pause();
 }
 
 void LocalMapper::resume() {
-  {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    paused_ = false;
-  }
-  cv_.notify_one();
+  worker_.resume();
 }
 
 void LocalMapper::stop() {
-  if (!threaded_ || !thread_.joinable()) return;
-  {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    stop_ = true;
-  }
-  cv_.notify_one();
-  thread_.join();
-}
-
-void LocalMapper::thread_main() {
-  while (true) {
-    KeyFrame* kf = nullptr;
-    {
-      std::unique_lock<std::mutex> lock(queue_mutex_);
-      cv_.wait(lock, [&] { return stop_ || (!paused_ && !queue_.empty()); });
-      if (queue_.empty()) return;  // stop requested and nothing left
-      kf = queue_.front();
-      queue_.pop_front();
-      busy_ = true;
-      abort_ba_ = false;
-    }
-    const bool ok = process_guarded(kf);
-    busy_ = false;
-    if (!ok) return;  // the failure waits for throw_if_failed()
-  }
-}
-
-bool LocalMapper::process_guarded(KeyFrame* kf) {
-  try {
-    process(kf);
-    return true;
-  } catch (...) {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    failure_ = std::current_exception();
-    queue_.clear();
-    return false;
-  }
+  worker_.stop();
 }
 
 void LocalMapper::process(KeyFrame* kf) {
+  // Bundle adjustment is skipped while keyframes wait; one that arrives
+  // during it, or a pause, aborts it (insert_keyframe, pause).
+  abort_ba_ = queued() > 0 || worker_.pause_requested();
   size_t n_keyframes = 0;
   // The bag of words reads only the keyframe's own descriptors: no lock.
   if (places_) places_->describe(*kf);
@@ -173,7 +104,7 @@ void LocalMapper::process(KeyFrame* kf) {
   if (queued() == 0 && n_keyframes > 2) {
     auto t0 = std::chrono::steady_clock::now();
     local_bundle_adjustment(kf, map_, &abort_ba_);
-    std::lock_guard<std::mutex> lock(queue_mutex_);
+    std::lock_guard<std::mutex> lock(stats_mutex_);
     stats_.ba_ms +=
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   }
@@ -182,7 +113,7 @@ void LocalMapper::process(KeyFrame* kf) {
     if (!kf->bad) cull_keyframes(kf);
   }
   if (next_ && !kf->bad) next_->insert_keyframe(kf);
-  std::lock_guard<std::mutex> lock(queue_mutex_);
+  std::lock_guard<std::mutex> lock(stats_mutex_);
   stats_.keyframes++;
 }
 
@@ -240,7 +171,7 @@ void LocalMapper::cull_map_points(KeyFrame* kf) {
     if (erase) {
       mp->set_bad();
       map_.erase_map_point(mp);
-      std::lock_guard<std::mutex> lock(queue_mutex_);
+      std::lock_guard<std::mutex> lock(stats_mutex_);
       stats_.points_culled++;
       it = recent_points_.erase(it);
     } else {
@@ -338,7 +269,7 @@ void LocalMapper::create_new_map_points(KeyFrame* kf) {
       mp->update_descriptor();
       mp->update_normal_and_depth();
       recent_points_.push_back(mp);
-      std::lock_guard<std::mutex> lock(queue_mutex_);
+      std::lock_guard<std::mutex> lock(stats_mutex_);
       stats_.points_created++;
     }
   }
@@ -405,7 +336,7 @@ void LocalMapper::cull_keyframes(KeyFrame* kf) {
       if (!n->bad) continue;  // kept: it holds a loop edge
       map_.erase_keyframe(n);
       if (places_) places_->erase(n);
-      std::lock_guard<std::mutex> lock(queue_mutex_);
+      std::lock_guard<std::mutex> lock(stats_mutex_);
       stats_.keyframes_culled++;
     }
   }

@@ -13,28 +13,25 @@
 //   neighbour, fuse, cull keyframes), so tracking never waits for more than
 //   one step; each step re-checks that its keyframes are not bad. Local
 //   bundle adjustment takes it itself, around collecting and writing back.
-// - paused_ (queue_mutex_): loop closing holds the thread between keyframes
-//   while it corrects the map (pause()/resume()).
-// - queue_mutex_ guards queue_, stats_ and failure_. It is taken after the
-//   map lock when both are held (never the other way), and held only
-//   briefly.
+// - The queue, the thread, pausing and failures are a KeyFrameWorker's
+//   (its own mutex); loop closing holds the thread between keyframes while
+//   it corrects the map (pause()/resume()).
+// - stats_mutex_ guards stats_. It is taken after the map lock when both
+//   are held (never the other way), and held only briefly.
 // - recent_points_ belongs to whichever thread processes keyframes: the
 //   mapping thread (threaded) or the caller of run_pending (synchronous).
 //   reset() touches it only once the mapper is idle.
 // - An exception while processing a keyframe stops mapping: it is kept
-//   (failure_) and rethrown to the tracking side as one depot::Error by
+//   and rethrown to the tracking side as one depot::Error by
 //   throw_if_failed() ("local mapping: <what>"); System::track() and
 //   finish() call it. A failed mapper counts as idle and drops new keyframes.
 #include <atomic>
-#include <condition_variable>
-#include <deque>
-#include <exception>
 #include <list>
 #include <mutex>
-#include <thread>
 
 #include "slam/data/map.h"
 #include "slam/mapping/keyframe_sink.h"
+#include "slam/mapping/keyframe_worker.h"
 
 namespace depot::slam {
 
@@ -81,9 +78,6 @@ class LocalMapper : public KeyFrameSink {
   LocalMapperStats stats() const;
 
  private:
-  void thread_main();
-  // process() with any exception kept in failure_; false when it threw.
-  bool process_guarded(KeyFrame* kf);
   void process(KeyFrame* kf);
   void process_new_keyframe(KeyFrame* kf);
   void cull_map_points(KeyFrame* kf);
@@ -92,20 +86,13 @@ class LocalMapper : public KeyFrameSink {
   void cull_keyframes(KeyFrame* kf);
 
   Map& map_;
-  bool threaded_;
   KeyFrameDatabase* places_;
-  mutable std::mutex queue_mutex_;
-  std::condition_variable cv_;
-  std::deque<KeyFrame*> queue_;
-  std::atomic<bool> busy_{false};
-  std::atomic<bool> stop_{false};
   std::atomic<bool> abort_ba_{false};
-  bool paused_ = false;  // guarded by queue_mutex_
   KeyFrameSink* next_ = nullptr;
   std::list<MapPoint*> recent_points_;
+  mutable std::mutex stats_mutex_;
   LocalMapperStats stats_;
-  std::exception_ptr failure_;
-  std::thread thread_;
+  KeyFrameWorker worker_;  // last: its thread may call process() at once
 };
 
 }  // namespace depot::slam

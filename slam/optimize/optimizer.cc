@@ -355,7 +355,8 @@ bool edge_is_bad(const BaProblem& ba, const BaEdge& e) {
 
 // One pass over the active edges. Returns false when aborted or failed, in
 // which case Ceres leaves the parameter blocks untouched.
-bool solve_ba(BaProblem& ba, int iterations, const std::atomic<bool>* abort) {
+bool solve_ba(BaProblem& ba, int iterations, const std::atomic<bool>* abort,
+              ceres::LinearSolverType solver = ceres::DENSE_SCHUR) {
   LeftSe3Manifold manifold;
   ceres::HuberLoss huber_mono(std::sqrt(kChi2Mono));
   ceres::HuberLoss huber_stereo(std::sqrt(kChi2Stereo));
@@ -382,7 +383,7 @@ bool solve_ba(BaProblem& ba, int iterations, const std::atomic<bool>* abort) {
   for (size_t i = 0; i < ba.kfs.size(); ++i)
     if (kf_used[i]) ordering->AddElementToGroup(ba.kfs[i].pose.data(), 1);
 
-  ceres::Solver::Options options = solver_options(iterations, ceres::DENSE_SCHUR);
+  ceres::Solver::Options options = solver_options(iterations, solver);
   options.linear_solver_ordering = ordering;
   AbortCallback callback(abort);
   options.callbacks.push_back(&callback);
@@ -390,6 +391,53 @@ bool solve_ba(BaProblem& ba, int iterations, const std::atomic<bool>* abort) {
   ceres::Solve(options, &problem, &summary);
   return summary.IsSolutionUsable();
 }
+
+// Fills a BaProblem: keyframes (optimised or fixed), points, and one edge
+// per observation. The caller holds the map lock.
+class BaBuilder {
+ public:
+  explicit BaBuilder(BaProblem& ba) : ba_(ba) {}
+
+  // Index of k's block, added when new; `fixed` counts only when added.
+  int add_keyframe(KeyFrame* k, bool fixed) {
+    const auto [it, added] = kf_index_.emplace(k, static_cast<int>(ba_.kfs.size()));
+    if (added) ba_.kfs.push_back({k, fixed, to_params(k->T_cw)});
+    return it->second;
+  }
+  bool has_keyframe(const KeyFrame* k) const { return kf_index_.count(k) > 0; }
+
+  // False when mp was added before.
+  bool add_point(MapPoint* mp) {
+    if (!pt_index_.emplace(mp, static_cast<int>(ba_.pts.size())).second) return false;
+    ba_.pts.push_back({mp, {mp->position.x(), mp->position.y(), mp->position.z()}});
+    return true;
+  }
+
+  // One edge per observation of every point; observers not added yet are
+  // added by `observer` (which returns their block, or -1 to skip them).
+  template <class Observer>
+  void add_edges(Observer observer) {
+    for (size_t p = 0; p < ba_.pts.size(); ++p)
+      for (const auto& [k, idx] : ba_.pts[p].mp->observations) {
+        if (k->bad || idx >= k->features.size()) continue;
+        const int ki = observer(k);
+        if (ki < 0) continue;
+        const bool stereo = k->features.u_right[idx] >= 0;
+        BaEdge e{ki,   static_cast<int>(p),           idx,    stereo,
+                 true, Measurement(k->features, idx), nullptr};
+        if (stereo)
+          e.cost = std::make_unique<BaCost<3>>(e.m);
+        else
+          e.cost = std::make_unique<BaCost<2>>(e.m);
+        ba_.edges.push_back(std::move(e));
+      }
+  }
+
+ private:
+  BaProblem& ba_;
+  std::unordered_map<const KeyFrame*, int> kf_index_;
+  std::unordered_map<const MapPoint*, int> pt_index_;
+};
 
 }  // namespace
 
@@ -401,15 +449,12 @@ void local_bundle_adjustment(KeyFrame* kf, Map& map, const std::atomic<bool>* ab
   {
     std::lock_guard<std::mutex> lock(map.mutex());
     if (!kf || kf->bad) return;
-    std::unordered_map<const KeyFrame*, int> kf_index;
-    std::unordered_map<const MapPoint*, int> pt_index;
+    BaBuilder builder(ba);
     auto add_kf = [&](KeyFrame* k, bool fixed) {
-      const auto [it, added] = kf_index.emplace(k, static_cast<int>(ba.kfs.size()));
-      if (added) {
-        ba.kfs.push_back({k, fixed || k->id == 0, to_params(k->T_cw)});
-        (fixed ? k->fixed_ba_for : k->local_ba_for) = kf->id;
-      }
-      return it->second;
+      const bool added = !builder.has_keyframe(k);
+      const int index = builder.add_keyframe(k, fixed || k->id == 0);
+      if (added) (fixed ? k->fixed_ba_for : k->local_ba_for) = kf->id;
+      return index;
     };
 
     // Local keyframes: kf and its covisibles.
@@ -420,27 +465,11 @@ void local_bundle_adjustment(KeyFrame* kf, Map& map, const std::atomic<bool>* ab
 
     // Local map points: everything the local keyframes see.
     for (size_t i = 0; i < n_local; ++i)
-      for (MapPoint* mp : ba.kfs[i].kf->map_points) {
-        if (!mp || mp->bad || pt_index.count(mp)) continue;
-        pt_index.emplace(mp, static_cast<int>(ba.pts.size()));
-        ba.pts.push_back({mp, {mp->position.x(), mp->position.y(), mp->position.z()}});
-        mp->local_ba_for = kf->id;
-      }
+      for (MapPoint* mp : ba.kfs[i].kf->map_points)
+        if (mp && !mp->bad && builder.add_point(mp)) mp->local_ba_for = kf->id;
 
     // One residual per observation; observers outside the local set are fixed.
-    for (size_t p = 0; p < ba.pts.size(); ++p)
-      for (const auto& [k, idx] : ba.pts[p].mp->observations) {
-        if (k->bad || idx >= k->features.size()) continue;
-        const int ki = add_kf(k, true);
-        const bool stereo = k->features.u_right[idx] >= 0;
-        BaEdge e{ki,   static_cast<int>(p),           idx,    stereo,
-                 true, Measurement(k->features, idx), nullptr};
-        if (stereo)
-          e.cost = std::make_unique<BaCost<3>>(e.m);
-        else
-          e.cost = std::make_unique<BaCost<2>>(e.m);
-        ba.edges.push_back(std::move(e));
-      }
+    builder.add_edges([&](KeyFrame* k) { return add_kf(k, true); });
   }
   if (ba.edges.empty()) return;
 
@@ -475,6 +504,39 @@ void local_bundle_adjustment(KeyFrame* kf, Map& map, const std::atomic<bool>* ab
     p.mp->position = Eigen::Vector3d(p.x[0], p.x[1], p.x[2]);
     p.mp->update_normal_and_depth();
   }
+}
+
+// ---------------------------------------------------------------------------
+// Global bundle adjustment.
+
+GlobalBaResult global_bundle_adjustment(Map& map, const std::atomic<bool>* abort, int iterations) {
+  GlobalBaResult result;
+  BaProblem ba;
+  {
+    std::lock_guard<std::mutex> lock(map.mutex());
+    const KeyFrame* first = map.first_keyframe();
+    if (!first) return result;
+    BaBuilder builder(ba);
+    for (KeyFrame* k : map.keyframes())
+      if (!k->bad) builder.add_keyframe(k, k == first);
+    for (MapPoint* mp : map.map_points())
+      if (!mp->bad) builder.add_point(mp);
+    // Keyframes are all in; an observer missing from them is bad or gone.
+    builder.add_edges(
+        [&](KeyFrame* k) { return builder.has_keyframe(k) ? builder.add_keyframe(k, false) : -1; });
+  }
+  if (ba.edges.empty() || AbortCallback::aborted(abort)) return result;
+  // The whole map: a sparse Schur complement (the reduced camera system of
+  // a long run is large and sparse).
+  const ceres::LinearSolverType solver =
+      ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE) ? ceres::SPARSE_SCHUR
+                                                                            : ceres::DENSE_SCHUR;
+  if (!solve_ba(ba, iterations, abort, solver) || AbortCallback::aborted(abort)) return result;
+  result.completed = true;
+  for (const BaKeyFrame& b : ba.kfs) result.keyframes.push_back({b.kf, to_pose(b.pose.data())});
+  for (const BaPoint& p : ba.pts)
+    result.points.push_back({p.mp, Eigen::Vector3d(p.x[0], p.x[1], p.x[2])});
+  return result;
 }
 
 // ---------------------------------------------------------------------------

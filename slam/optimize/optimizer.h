@@ -1,7 +1,7 @@
 #pragma once
 // Non-linear least squares on the map, in the manner of ORB-SLAM2's Optimizer
-// but solved with Ceres: pose-only optimisation of a tracked frame and local
-// bundle adjustment around a new keyframe.
+// but solved with Ceres: pose-only optimisation of a tracked frame, local
+// bundle adjustment around a new keyframe and global bundle adjustment.
 //
 // Residuals are reprojection errors in pixels weighted by sqrt(1 / sigma^2) of
 // the keypoint's pyramid level. A keypoint with depth gives a 3-D "stereo"
@@ -11,6 +11,8 @@
 // uses their square roots as its width.
 #include <atomic>
 #include <cstddef>
+#include <utility>
+#include <vector>
 
 #include "slam/data/frame.h"
 #include "slam/data/keyframe.h"
@@ -54,6 +56,24 @@ struct LocalBaOptions {
 // pass, the first pass's result is applied.
 void local_bundle_adjustment(KeyFrame* kf, Map& map, const std::atomic<bool>* abort,
                              const LocalBaOptions& options = {});
+
+// Bundle adjustment of the whole map (after a loop closure): every non-bad
+// keyframe's pose (the map's first keyframe fixed) and every non-bad point,
+// `iterations` Levenberg-Marquardt iterations with the Huber loss, all
+// observations kept (ORB-SLAM2's global BA). The result is returned, not
+// written: keyframes and points made while it ran must be moved with it,
+// which is the caller's job (loop/global_adjuster).
+//
+// Locking: the caller must NOT hold map.mutex(); it is taken only to collect
+// the problem. `abort` (may be null) is polled between iterations; an
+// aborted or failed run returns completed = false.
+struct GlobalBaResult {
+  bool completed = false;
+  std::vector<std::pair<KeyFrame*, Pose>> keyframes;
+  std::vector<std::pair<MapPoint*, Eigen::Vector3d>> points;
+};
+GlobalBaResult global_bundle_adjustment(Map& map, const std::atomic<bool>* abort,
+                                        int iterations = 10);
 
 // RMS pixel distance between the (u, v) keypoints of `kf` and the projections
 // of their non-bad map points (points behind the camera count too, with their

@@ -10,60 +10,12 @@
 
 #include "common/rng.h"
 #include "slam/data/map_point.h"
+#include "tests/support/ba_scene.h"
 
 namespace depot::slam {
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
-
-const ScaleLevels& levels() {
-  static const ScaleLevels lv = ScaleLevels::make(8, 1.2f);
-  return lv;
-}
-
-// A rotation of `angle` rad about a random axis.
-Eigen::Matrix3d random_rotation(Rng& rng, double angle) {
-  Eigen::Vector3d axis(rng.normal(), rng.normal(), rng.normal());
-  return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
-}
-
-Eigen::Vector3d random_direction(Rng& rng) {
-  return Eigen::Vector3d(rng.normal(), rng.normal(), rng.normal()).normalized();
-}
-
-// T_cw perturbed by exactly `trans` m of camera-centre motion and `angle` rad.
-Pose perturb(const Pose& T_cw, Rng& rng, double trans, double angle) {
-  const Pose T_wc = T_cw.inverse();
-  Pose out = make_pose(Eigen::Matrix3d(random_rotation(rng, angle) * T_wc.linear()),
-                       Eigen::Vector3d(T_wc.translation() + trans * random_direction(rng)));
-  return out.inverse();
-}
-
-// A camera looking roughly along +z from `center`, yawed by `yaw` rad.
-Pose camera_pose(const Eigen::Vector3d& center, double yaw) {
-  const Eigen::Matrix3d R_wc = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitY()).toRotationMatrix();
-  return make_pose(R_wc, center).inverse();
-}
-
-struct Keypoint {
-  double u, v, z;  // z <= 0: no depth
-  int octave;
-};
-
-// Features filled directly from synthetic keypoints (depth -> u_right).
-Features make_features(const std::vector<Keypoint>& kps, const PinholeCamera& cam) {
-  Features f;
-  f.camera = cam;
-  f.levels = &levels();
-  f.descriptors = cv::Mat::zeros(static_cast<int>(kps.size()), 32, CV_8U);
-  for (const Keypoint& k : kps) {
-    f.keypoints.emplace_back(static_cast<float>(k.u), static_cast<float>(k.v), 31.0f, -1.0f, 0.0f,
-                             k.octave);
-    f.depth.push_back(k.z > 0 ? static_cast<float>(k.z) : -1.0f);
-    f.u_right.push_back(k.z > 0 ? static_cast<float>(cam.right_u(k.u, k.z)) : -1.0f);
-  }
-  return f;
-}
+using namespace depot::slam::test;
 
 // ---------------------------------------------------------------------------
 // Pose-only optimisation.
@@ -191,70 +143,6 @@ TEST(OptimizePose, TooFewCorrespondencesLeavesPose) {
 // ---------------------------------------------------------------------------
 // Local bundle adjustment.
 
-struct BaScene {
-  Map map;
-  std::vector<KeyFrame*> kfs;
-  std::vector<Pose> truth;
-  // Per keyframe, the keypoint indices whose keypoint was made a gross outlier.
-  std::vector<std::vector<size_t>> gross;
-};
-
-// 5 keyframes along a short sideways path observing 400 points; keyframe 0
-// exact, the others perturbed by 2 cm / 1 deg, the points by 3 cm.
-void build_ba_scene(BaScene& s, uint64_t seed, int n_gross_per_kf = 0) {
-  Rng rng(seed);
-  const PinholeCamera cam;
-  constexpr int kKeyframes = 5, kPoints = 400;
-  for (int k = 0; k < kKeyframes; ++k)
-    s.truth.push_back(camera_pose(Eigen::Vector3d(0.15 * k, 0.02 * k, 0.05 * k), -0.03 * k));
-  // Points in front of the middle camera, spread in depth.
-  const Pose mid_wc = s.truth[kKeyframes / 2].inverse();
-  std::vector<Eigen::Vector3d> points;
-  for (int i = 0; i < kPoints; ++i)
-    points.push_back(mid_wc * cam.unproject(rng.uniform(60, cam.width - 60),
-                                            rng.uniform(50, cam.height - 50),
-                                            rng.uniform(1.5, 5.0)));
-
-  std::vector<std::vector<int>> point_of(kKeyframes);  // per keyframe: point of each keypoint
-  for (int k = 0; k < kKeyframes; ++k) {
-    std::vector<Keypoint> kps;
-    for (int i = 0; i < kPoints; ++i) {
-      const Eigen::Vector3d pc = s.truth[k] * points[i];
-      if (pc.z() <= 0.1) continue;
-      const Eigen::Vector2d uv = cam.project(pc);
-      if (!cam.in_image(uv.x(), uv.y())) continue;
-      kps.push_back({uv.x() + rng.normal(0, 0.5), uv.y() + rng.normal(0, 0.5),
-                     pc.z() * (1.0 + rng.normal(0, 0.002)), static_cast<int>(rng.below(3))});
-      point_of[k].push_back(i);
-    }
-    s.gross.emplace_back();
-    for (int g = 0; g < n_gross_per_kf; ++g) {
-      const size_t idx = rng.below(kps.size());
-      kps[idx].u += 40 * (rng.uniform() < 0.5 ? -1 : 1);
-      kps[idx].v += 30;
-      s.gross.back().push_back(idx);
-    }
-    Frame f(k, 0.1 * k, make_features(kps, cam));
-    f.T_cw = k == 0 ? s.truth[0] : perturb(s.truth[k], rng, 0.02, 1 * kDeg);
-    f.has_pose = true;
-    s.kfs.push_back(s.map.create_keyframe(f));
-  }
-  std::vector<MapPoint*> mps;
-  for (int i = 0; i < kPoints; ++i)
-    mps.push_back(s.map.create_map_point(points[i] + 0.03 * random_direction(rng), s.kfs[0]));
-  for (int k = 0; k < kKeyframes; ++k)
-    for (size_t idx = 0; idx < point_of[k].size(); ++idx) {
-      MapPoint* mp = mps[point_of[k][idx]];
-      mp->add_observation(s.kfs[k], idx);
-      s.kfs[k]->add_map_point(mp, idx);
-    }
-  for (MapPoint* mp : mps) {
-    if (!mp->observations.count(mp->reference)) mp->reference = mp->observations.begin()->first;
-    mp->update_normal_and_depth();
-  }
-  for (KeyFrame* kf : s.kfs) kf->update_connections();
-}
-
 TEST(LocalBundleAdjustment, ReducesReprojectionError) {
   BaScene s;
   build_ba_scene(s, 11);
@@ -349,6 +237,63 @@ TEST(LocalBundleAdjustment, SkipsBadKeyframe) {
   const Pose before = s.kfs[2]->T_cw;
   local_bundle_adjustment(s.kfs.back(), s.map, nullptr);
   EXPECT_TRUE(s.kfs[2]->T_cw.isApprox(before, 0.0));
+}
+
+// ---------------------------------------------------------------------------
+// Global bundle adjustment.
+
+TEST(GlobalBundleAdjustment, RecoversEveryKeyframeAndReturnsWithoutWriting) {
+  BaScene s;
+  build_ba_scene(s, 21);
+  std::vector<Pose> poses;
+  for (const KeyFrame* kf : s.kfs) poses.push_back(kf->T_cw);
+  const double before = reprojection_rmse(s.map);
+  const GlobalBaResult result = global_bundle_adjustment(s.map, nullptr, 10);
+  ASSERT_TRUE(result.completed);
+  ASSERT_EQ(result.keyframes.size(), s.kfs.size());
+  EXPECT_EQ(result.points.size(), s.map.n_map_points());
+  // Nothing written yet.
+  for (size_t k = 0; k < s.kfs.size(); ++k) EXPECT_TRUE(s.kfs[k]->T_cw.isApprox(poses[k], 0.0));
+  EXPECT_EQ(reprojection_rmse(s.map), before);
+  // The solution: the first keyframe held, every other one back near the truth.
+  double max_t = 0;
+  for (const auto& [kf, T_cw] : result.keyframes) {
+    const size_t k = static_cast<size_t>(kf->id);
+    if (k == 0) EXPECT_TRUE(T_cw.isApprox(poses[0], 0.0));
+    max_t = std::max(max_t, translation_between(T_cw.inverse(), s.truth[k].inverse()));
+  }
+  for (const auto& [kf, T_cw] : result.keyframes) kf->T_cw = T_cw;
+  for (const auto& [mp, x] : result.points) mp->position = x;
+  const double after = reprojection_rmse(s.map);
+  std::printf("[global BA] rmse %.3f -> %.3f px, pose error max %.4f m\n", before, after, max_t);
+  EXPECT_LT(max_t, 0.01);
+  EXPECT_GT(before / after, 5.0);
+}
+
+TEST(GlobalBundleAdjustment, AbortedReturnsNothing) {
+  BaScene s;
+  build_ba_scene(s, 22);
+  std::atomic<bool> abort{true};
+  const GlobalBaResult result = global_bundle_adjustment(s.map, &abort, 10);
+  EXPECT_FALSE(result.completed);
+  EXPECT_TRUE(result.keyframes.empty());
+  EXPECT_TRUE(s.map.mutex().try_lock());
+  s.map.mutex().unlock();
+}
+
+TEST(GlobalBundleAdjustment, LeavesBadKeyframesAndPointsOut) {
+  BaScene s;
+  build_ba_scene(s, 23);
+  s.kfs[3]->set_bad();
+  s.map.erase_keyframe(s.kfs[3]);
+  MapPoint* gone = *s.map.map_points().begin();
+  gone->set_bad();
+  s.map.erase_map_point(gone);
+  const GlobalBaResult result = global_bundle_adjustment(s.map, nullptr, 5);
+  ASSERT_TRUE(result.completed);
+  for (const auto& [kf, T] : result.keyframes) EXPECT_NE(kf, s.kfs[3]);
+  for (const auto& [mp, x] : result.points) EXPECT_NE(mp, gone);
+  EXPECT_EQ(result.keyframes.size(), 4u);
 }
 
 }  // namespace

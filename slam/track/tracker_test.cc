@@ -26,9 +26,13 @@ class TrackerTest : public ::testing::Test {
   }
 
   // Tracks the view turned by `yaw_deg` (synchronous mapping after it, as
-  // System does) and checks its pose when tracked.
-  TrackingStats track_view(double yaw_deg) {
-    const test::RealFrame view = test::turned_view(real_, camera_, test::turn(yaw_deg));
+  // System does) and checks its pose when tracked. Only the left
+  // `depth_share` of the image keeps its depth (a depth gap: a wall closer
+  // than the sensor's range, glass, sunlight).
+  TrackingStats track_view(double yaw_deg, double depth_share = 1.0) {
+    test::RealFrame view = test::turned_view(real_, camera_, test::turn(yaw_deg));
+    const int keep = static_cast<int>(depth_share * view.depth.cols);
+    view.depth.colRange(keep, view.depth.cols).setTo(0);
     TrackingStats stats;
     tracker_.track(make_frame(view.bgr, view.depth), &stats);
     mapper_.run_pending();
@@ -99,6 +103,33 @@ TEST_F(TrackerTest, StartsAMapThenFollowsTheCameraWithTheMotionModel) {
   EXPECT_EQ(states(),
             (std::vector<FrameState>{FrameState::kNewMap, FrameState::kOk, FrameState::kOk,
                                      FrameState::kOk, FrameState::kOk, FrameState::kOk}));
+}
+
+// Keypoints without depth still match map points and constrain the pose
+// (two-dimensional residuals), so frames with no valid depth at all keep
+// the camera tracked on the map made before the gap.
+TEST_F(TrackerTest, TracksThroughFramesWithoutDepth) {
+  track_view(0);
+  track_view(1);
+  const size_t keyframes = map_.n_keyframes();
+  for (double yaw : {2.0, 3.0, 4.0, 5.0, 6.0}) {
+    const TrackingStats stats = track_view(yaw, 0.0);
+    EXPECT_EQ(tracker_.state(), TrackingState::kOk) << "yaw " << yaw;
+    EXPECT_GT(stats.matches, 100) << "yaw " << yaw;
+  }
+  EXPECT_EQ(map_.n_keyframes(), keyframes) << "a frame without depth makes no keyframe";
+  // Depth back: on as before.
+  track_view(7);
+  EXPECT_EQ(tracker_.state(), TrackingState::kOk);
+}
+
+// A gap over most of the image (only the left fifth has depth): tracked.
+TEST_F(TrackerTest, TracksWithDepthOnlyInAStripOfTheImage) {
+  track_view(0);
+  for (double yaw : {1.0, 2.0, 3.0, 4.0, 5.0, 6.0}) {
+    track_view(yaw, 0.2);
+    EXPECT_EQ(tracker_.state(), TrackingState::kOk) << "yaw " << yaw;
+  }
 }
 
 TEST_F(TrackerTest, FallsBackToTheReferenceKeyframeWhenTheMotionModelFails) {

@@ -1,0 +1,129 @@
+#include "slam/loop/global_adjuster.h"
+
+#include <deque>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "slam/data/map_point.h"
+#include "slam/mapping/local_mapper.h"
+#include "slam/optimize/optimizer.h"
+
+namespace depot::slam {
+void apply_global_adjustment(Map& map, const GlobalBaResult& result) {
+  std::unordered_map<const KeyFrame*, Pose> before, after;
+  for (const auto& [k, T_cw] : result.keyframes) {
+    if (k->bad) continue;
+    before[k] = k->T_cw;
+    after[k] = T_cw;
+  }
+  // Keyframes made while it solved: down the spanning tree from the first
+  // keyframe, each keeps its pose relative to its parent.
+  std::deque<KeyFrame*> todo{map.first_keyframe()};
+  std::unordered_set<const KeyFrame*> seen{map.first_keyframe()};
+  while (!todo.empty()) {
+    KeyFrame* parent = todo.front();
+    todo.pop_front();
+    for (KeyFrame* child : parent->children()) {
+      if (!seen.insert(child).second) continue;
+      todo.push_back(child);
+      if (child->bad || after.count(child) || !after.count(parent)) continue;
+      before[child] = child->T_cw;
+      after[child] = child->T_cw * before[parent].inverse() * after[parent];
+    }
+  }
+  for (const auto& [k, T_cw] : after) const_cast<KeyFrame*>(k)->T_cw = T_cw;
+
+  std::unordered_set<const MapPoint*> solved;
+  for (const auto& [mp, x] : result.points) {
+    if (mp->bad) continue;
+    mp->position = x;
+    solved.insert(mp);
+  }
+  // Points made while it solved move with their reference keyframe.
+  for (MapPoint* mp : map.map_points()) {
+    if (mp->bad) continue;
+    if (!solved.count(mp)) {
+      const auto b = before.find(mp->reference);
+      if (b == before.end()) continue;
+      mp->position = after[mp->reference].inverse() * (b->second * mp->position);
+    }
+    mp->update_normal_and_depth();
+  }
+}
+
+GlobalAdjuster::GlobalAdjuster(Map& map, LocalMapper& mapper, bool threaded, int iterations)
+    : map_(map), mapper_(mapper), threaded_(threaded), iterations_(iterations) {}
+
+GlobalAdjuster::~GlobalAdjuster() {
+  abort();
+}
+
+void GlobalAdjuster::start() {
+  abort();
+  abort_ = false;
+  if (!threaded_) {
+    run();
+    return;
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  running_ = true;
+  thread_ = std::thread([this] { run(); });
+}
+
+void GlobalAdjuster::abort() {
+  abort_ = true;
+  join();
+}
+
+void GlobalAdjuster::wait() {
+  join();
+}
+
+void GlobalAdjuster::join() {
+  std::thread finished;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    finished = std::move(thread_);
+  }
+  if (finished.joinable()) finished.join();
+}
+
+bool GlobalAdjuster::running() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return running_;
+}
+
+int GlobalAdjuster::completed() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return completed_;
+}
+
+std::exception_ptr GlobalAdjuster::failure() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return failure_;
+}
+
+void GlobalAdjuster::run() {
+  bool applied = false;
+  try {
+    const GlobalBaResult result = global_bundle_adjustment(map_, &abort_, iterations_);
+    if (result.completed && !abort_) {
+      mapper_.pause();
+      {
+        std::lock_guard<std::mutex> lock(map_.mutex());
+        apply_global_adjustment(map_, result);
+      }
+      mapper_.resume();
+      applied = true;
+    }
+  } catch (...) {
+    mapper_.resume();
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!failure_) failure_ = std::current_exception();
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  completed_ += applied;
+  running_ = false;
+}
+
+}  // namespace depot::slam
