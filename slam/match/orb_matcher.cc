@@ -267,23 +267,23 @@ int match_for_triangulation(const KeyFrame& kf1, const KeyFrame& kf2,
   const Eigen::Vector2d epipole = f2.camera.project(c1_in_2);
   const bool epipole_valid = c1_in_2.z() > 0;
 
-  std::vector<size_t> free2;
-  for (size_t j = 0; j < f2.size(); ++j)
-    if (!kf2.map_points[j]) free2.push_back(j);
   std::vector<int> claimed(f2.size(), -1);
   std::vector<int> claimed_dist(f2.size(), 256);
   RotationHistogram hist;
-  for (size_t i = 0; i < f1.size(); ++i) {
-    if (kf1.map_points[i]) continue;
+  // The best epipolar match in image 2 for keypoint i of image 1 among
+  // `candidates`; a keypoint of image 2 keeps the closest claim.
+  auto match_one = [&](size_t i, const std::vector<size_t>& candidates) {
+    if (kf1.map_points[i]) return;
     const cv::KeyPoint& k1 = f1.keypoints[i];
     const Eigen::Vector3d line =
         F12.transpose() * Eigen::Vector3d(k1.pt.x, k1.pt.y, 1.0);  // in image 2
     const double norm = line.head<2>().squaredNorm();
-    if (norm < 1e-12) continue;
+    if (norm < 1e-12) return;
     const uint8_t* d1 = f1.descriptors.ptr<uint8_t>(static_cast<int>(i));
     int best = kMatchThLow + 1;
     size_t best_j = 0;
-    for (size_t j : free2) {
+    for (size_t j : candidates) {
+      if (kf2.map_points[j]) continue;
       const int d = descriptor_distance(d1, f2.descriptors.ptr<uint8_t>(static_cast<int>(j)));
       if (d >= best) continue;
       const cv::KeyPoint& k2 = f2.keypoints[j];
@@ -295,12 +295,30 @@ int match_for_triangulation(const KeyFrame& kf1, const KeyFrame& kf2,
       if (num * num / norm >= 3.84 * f2.levels->sigma2[k2.octave]) continue;
       best = d, best_j = j;
     }
-    if (best > kMatchThLow) continue;
-    if (claimed[best_j] >= 0) {
-      if (best >= claimed_dist[best_j]) continue;
-    }
+    if (best > kMatchThLow) return;
+    if (claimed[best_j] >= 0 && best >= claimed_dist[best_j]) return;
     claimed[best_j] = static_cast<int>(i);
     claimed_dist[best_j] = best;
+  };
+  if (!kf1.bow_features.empty() && !kf2.bow_features.empty()) {
+    // Only keypoints under the same vocabulary node are compared
+    // (ORB-SLAM2's SearchForTriangulation): a tenth of the pairs or fewer.
+    auto a = kf1.bow_features.begin();
+    auto b = kf2.bow_features.begin();
+    while (a != kf1.bow_features.end() && b != kf2.bow_features.end()) {
+      if (a->first < b->first) {
+        a = kf1.bow_features.lower_bound(b->first);
+      } else if (b->first < a->first) {
+        b = kf2.bow_features.lower_bound(a->first);
+      } else {
+        for (size_t i : a->second) match_one(i, b->second);
+        ++a, ++b;
+      }
+    }
+  } else {
+    std::vector<size_t> all2(f2.size());
+    for (size_t j = 0; j < f2.size(); ++j) all2[j] = j;
+    for (size_t i = 0; i < f1.size(); ++i) match_one(i, all2);
   }
   for (size_t j = 0; j < f2.size(); ++j) {
     if (claimed[j] < 0) continue;

@@ -50,7 +50,9 @@ int match_by_bow(const KeyFrame& kf, const Frame& frame, std::vector<MapPoint*>&
                  float ratio);
 
 // Unmatched keypoint pairs of two keyframes that agree with the epipolar
-// geometry of their poses.
+// geometry of their poses. With both direct indices set (bow_features),
+// only keypoints under the same vocabulary node are compared, as ORB-SLAM2
+// does; otherwise every pair.
 int match_for_triangulation(const KeyFrame& kf1, const KeyFrame& kf2,
                             std::vector<std::pair<size_t, size_t>>& pairs);
 
