@@ -358,5 +358,51 @@ TEST(CliSlam, TrainsAndDescribesAVocabulary) {
   EXPECT_FALSE(fs::exists(none));
 }
 
+// Map reuse through the program: --save-map, then --load-map
+// --localise-only adds no keyframe; bad maps and flags are one error line
+// with nothing written.
+TEST(CliSlam, SavesAMapAndLocalisesInIt) {
+  const std::string dataset = render_small({"depot_static", 40, 160, false});
+  const std::string map = temp_path("depot") + ".map";
+  DepotResult save = depot("slam run " + dataset + " --mapping sync -q -o " + temp_path("a") +
+                           ".txt --save-map " + map);
+  ASSERT_EQ(save.code, 0) << save.output;
+  ASSERT_TRUE(fs::exists(map));
+  const std::string out = temp_path("localised") + ".txt";
+  DepotResult again = depot("slam run " + dataset + " --mapping sync -q -o " + out +
+                            " --load-map " + map + " --localise-only");
+  ASSERT_EQ(again.code, 0) << again.output;
+  // The same number of keyframes before and after: "in mode orb: N keyframes".
+  auto keyframes = [](const std::string& text) {
+    const size_t at = text.find(" keyframes,");
+    const size_t from = text.rfind(' ', at - 1);
+    return text.substr(from + 1, at - from - 1);
+  };
+  EXPECT_EQ(keyframes(again.output), keyframes(save.output)) << again.output;
+  EXPECT_TRUE(fs::exists(out));
+
+  const std::string never = temp_path("never") + ".txt";
+  auto expect_map_error = [&](const std::string& flags, const std::string& needle) {
+    DepotResult r = depot("slam run " + dataset + " -q -o " + never + " " + flags);
+    expect_one_error_line(r, needle);
+    EXPECT_FALSE(fs::exists(never)) << "no trajectory on failure";
+  };
+  expect_map_error("--localise-only", "needs a map to localise in (--load-map M)");
+  expect_map_error("--load-map " + temp_path("missing") + ".map", "no such map file");
+  const std::string bytes = read_text(map);
+  const std::string corrupt = temp_path("corrupt") + ".map";
+  std::string flipped = bytes;
+  flipped[bytes.size() / 2] ^= 1;
+  std::ofstream(corrupt, std::ios::binary) << flipped;
+  expect_map_error("--load-map " + corrupt, "checksum mismatch");
+  const std::string truncated = temp_path("truncated") + ".map";
+  std::ofstream(truncated, std::ios::binary) << bytes.substr(0, bytes.size() - 1000);
+  expect_map_error("--load-map " + truncated, "checksum mismatch");
+  const std::string other_size = render_small({"depot_static", 6, 320, false});
+  DepotResult camera = depot("slam run " + other_size + " -q -o " + never + " --load-map " + map);
+  expect_one_error_line(camera, "another camera");
+  expect_map_error("--save-map /nonexistent-folder/depot.map", "/nonexistent-folder");
+}
+
 }  // namespace
 }  // namespace depot::test

@@ -30,6 +30,23 @@ slam::SlamSettings settings_of(const slam::TumSequence& sequence) {
   return s;
 }
 
+// Tracks every frame of the patrol; `after` sees each frame's index and state.
+template <class After>
+void run_patrol(slam::System& system, slam::TumSequence& sequence, After after) {
+  cv::Mat bgr, depth;
+  for (size_t i = 0; i < sequence.size(); ++i) {
+    sequence.load(i, bgr, depth);
+    after(i, system.track(bgr, depth, sequence.entry(i).rgb_timestamp).state);
+  }
+  system.finish();
+}
+
+double ate_of(const slam::System& system) {
+  const auto gt = read_tum_trajectory(patrol() + "/groundtruth.txt");
+  return eval::compute_ate(eval::match_trajectories(gt, system.trajectory(), {}, "gt", "estimate"))
+      .statistics.rmse;
+}
+
 TEST(SlamLoop, RelocalisesAgainstAKeyFrameLeftLongAgo) {
   slam::TumSequence sequence(patrol());
   const slam::SlamSettings settings = settings_of(sequence);
@@ -66,14 +83,10 @@ TEST(SlamLoop, TheLoopIsClosedWhenThePatrolReturns) {
   const slam::SlamSettings settings = settings_of(sequence);
   sequence.set_depth_factor(settings.camera.depth_factor);
   slam::System system(settings);
-  cv::Mat bgr, depth;
   int lost = 0;
-  for (size_t i = 0; i < sequence.size(); ++i) {
-    sequence.load(i, bgr, depth);
-    lost += system.track(bgr, depth, sequence.entry(i).rgb_timestamp).state ==
-            slam::TrackingState::kLost;
-  }
-  system.finish();
+  run_patrol(system, sequence, [&](size_t, slam::TrackingState state) {
+    lost += state == slam::TrackingState::kLost;
+  });
   EXPECT_EQ(lost, 0);
   const std::vector<slam::LoopClosure> loops = system.loop_closures();
   ASSERT_FALSE(loops.empty()) << "no loop closed";
@@ -88,12 +101,11 @@ TEST(SlamLoop, TheLoopIsClosedWhenThePatrolReturns) {
     EXPECT_GT(l.path_m, 12.0);
     EXPECT_LT(l.correction_m, 0.15);
   }
-  const auto gt = read_tum_trajectory(patrol() + "/groundtruth.txt");
-  const double ate =
-      eval::compute_ate(eval::match_trajectories(gt, system.trajectory(), {}, "gt", "estimate"))
-          .statistics.rmse;
-  std::printf("patrol 1080 frames at 320x240: ATE %.4f m, %zu loops, %d refused\n", ate,
-              loops.size(), system.loops_refused());
+  // Each loop is followed by a global bundle adjustment (synchronous here).
+  EXPECT_EQ(system.global_adjustments(), static_cast<int>(loops.size()));
+  const double ate = ate_of(system);
+  std::printf("patrol 1080 frames at 320x240: ATE %.4f m, %zu loops, %d refused, %d global BA\n",
+              ate, loops.size(), system.loops_refused(), system.global_adjustments());
   EXPECT_LT(ate, 0.05);  // the scenario bound of #15 at full size
 }
 
@@ -108,31 +120,25 @@ TEST(SlamLoop, ThreadedMappingAndLoopClosingRunTheWholePatrol) {
   settings.threaded_mapping = true;
   sequence.set_depth_factor(settings.camera.depth_factor);
   slam::System system(settings);
-  cv::Mat bgr, depth;
   int tracked = 0;
-  for (size_t i = 0; i < sequence.size(); ++i) {
-    sequence.load(i, bgr, depth);
-    const slam::TrackingState state =
-        system.track(bgr, depth, sequence.entry(i).rgb_timestamp).state;
+  run_patrol(system, sequence, [&](size_t i, slam::TrackingState state) {
     tracked += state == slam::TrackingState::kOk || state == slam::TrackingState::kRelocalized;
     // Read the shared state while the workers run, as a viewer would.
     if (i % 100 == 0) {
       (void)system.trajectory();
       (void)system.keyframe_trajectory();
       (void)system.loop_closures();
+      (void)system.global_adjustments();
       (void)system.mapping_stats();
     }
-  }
-  system.finish();
+  });
   const std::vector<slam::LoopClosure> loops = system.loop_closures();
-  const auto gt = read_tum_trajectory(patrol() + "/groundtruth.txt");
-  const std::vector<StampedPose> trajectory = system.trajectory();
-  EXPECT_GT(trajectory.size(), sequence.size() / 2);
-  const double ate =
-      eval::compute_ate(eval::match_trajectories(gt, trajectory, {}, "gt", "estimate"))
-          .statistics.rmse;
-  std::printf("threaded patrol: %d of %zu frames tracked, %zu keyframes, %zu loops, ATE %.4f m\n",
-              tracked, sequence.size(), system.n_keyframes(), loops.size(), ate);
+  EXPECT_GT(system.trajectory().size(), sequence.size() / 2);
+  std::printf(
+      "threaded patrol: %d of %zu frames tracked, %zu keyframes, %zu loops, %d global BA, ATE "
+      "%.4f m\n",
+      tracked, sequence.size(), system.n_keyframes(), loops.size(), system.global_adjustments(),
+      ate_of(system));
 }
 
 }  // namespace

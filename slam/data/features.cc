@@ -9,17 +9,34 @@ Features::Features(std::vector<cv::KeyPoint> kps, cv::Mat desc, const cv::Mat& d
     : keypoints(std::move(kps)), descriptors(std::move(desc)), levels(lv), camera(cam) {
   const size_t n = keypoints.size();
   depth.assign(n, -1.0f);
-  u_right.assign(n, -1.0f);
   for (size_t i = 0; i < n; ++i) {
     const int x = static_cast<int>(std::lround(keypoints[i].pt.x));
     const int y = static_cast<int>(std::lround(keypoints[i].pt.y));
     if (x < 0 || y < 0 || x >= depth_image.cols || y >= depth_image.rows) continue;
     const float z = depth_image.at<float>(y, x);
-    if (z > 0 && std::isfinite(z)) {
-      depth[i] = z;
-      u_right[i] = static_cast<float>(camera.right_u(keypoints[i].pt.x, z));
-    }
+    if (z > 0 && std::isfinite(z)) depth[i] = z;
   }
+  index();
+}
+
+Features::Features(std::vector<cv::KeyPoint> kps, cv::Mat desc, std::vector<float> keypoint_depth,
+                   const PinholeCamera& cam, const ScaleLevels* lv)
+    : keypoints(std::move(kps)),
+      descriptors(std::move(desc)),
+      depth(std::move(keypoint_depth)),
+      levels(lv),
+      camera(cam) {
+  depth.resize(keypoints.size(), -1.0f);
+  for (float& z : depth)
+    if (!(z > 0) || !std::isfinite(z)) z = -1.0f;
+  index();
+}
+
+void Features::index() {
+  const size_t n = keypoints.size();
+  u_right.assign(n, -1.0f);
+  for (size_t i = 0; i < n; ++i)
+    if (depth[i] > 0) u_right[i] = static_cast<float>(camera.right_u(keypoints[i].pt.x, depth[i]));
   cell_w_ = static_cast<double>(camera.width) / kGridCols;
   cell_h_ = static_cast<double>(camera.height) / kGridRows;
   grid_.assign(kGridCols * kGridRows, {});

@@ -19,6 +19,10 @@ class Features {
   // Depth (CV_32F metres, 0 = none) is sampled at each keypoint.
   Features(std::vector<cv::KeyPoint> keypoints, cv::Mat descriptors, const cv::Mat& depth,
            const PinholeCamera& camera, const ScaleLevels* levels);
+  // Depth given per keypoint (<= 0: none), as a saved map holds it.
+  Features(std::vector<cv::KeyPoint> keypoints, cv::Mat descriptors,
+           std::vector<float> keypoint_depth, const PinholeCamera& camera,
+           const ScaleLevels* levels);
 
   size_t size() const { return keypoints.size(); }
   // Indices of keypoints within radius r of (u, v) at pyramid levels
@@ -35,6 +39,8 @@ class Features {
   PinholeCamera camera;
 
  private:
+  // u_right from depth, and the grid.
+  void index();
   std::vector<std::vector<size_t>> grid_;  // row-major kGridRows x kGridCols
   double cell_w_ = 1, cell_h_ = 1;
 };

@@ -97,6 +97,13 @@ int KeyFrame::weight(KeyFrame* kf) const {
   return it == connections_.end() ? 0 : it->second;
 }
 
+void KeyFrame::set_parent(KeyFrame* p) {
+  if (parent_) parent_->children_.erase(this);
+  parent_ = p;
+  if (p) p->children_.insert(this);
+  first_connection_ = false;
+}
+
 void KeyFrame::set_bad() {
   if (id == 0 || !loop_edges.empty()) return;
   for (auto& [kf, w] : connections_) kf->erase_connection(this);

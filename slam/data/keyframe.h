@@ -54,6 +54,8 @@ class KeyFrame {
   std::vector<KeyFrame*> covisibles_with_weight(int min_weight) const;
   int weight(KeyFrame* kf) const;
   KeyFrame* parent() const { return parent_; }
+  // Restores a spanning-tree link (a loaded map): `p` becomes the parent.
+  void set_parent(KeyFrame* p);
   const std::set<KeyFrame*, ById>& children() const { return children_; }
   // Removes the keyframe from the graph (not the first one).
   void set_bad();

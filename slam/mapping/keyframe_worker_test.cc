@@ -33,6 +33,22 @@ struct Recorder {
   }
 };
 
+// A threaded worker whose step takes 20 ms, and says when one is running.
+struct SlowWorker {
+  Tokens t;
+  Recorder rec;
+  std::atomic<bool> in_step{false};
+  KeyFrameWorker worker{true, [this](KeyFrame* kf) {
+                          in_step = true;
+                          std::this_thread::sleep_for(std::chrono::milliseconds(20));
+                          rec(kf);
+                          in_step = false;
+                        }};
+  void wait_for_a_step() {
+    while (!in_step) std::this_thread::yield();
+  }
+};
+
 void wait_until_idle(const KeyFrameWorker& worker) {
   for (int i = 0; i < 5000 && !worker.idle(); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -81,30 +97,22 @@ TEST(KeyFrameWorker, StopFinishesTheQueue) {
 }
 
 TEST(KeyFrameWorker, PauseHoldsQueuedKeyFramesUntilResume) {
-  Tokens t;
-  Recorder rec;
-  std::atomic<bool> in_step{false};
-  KeyFrameWorker worker(true, [&](KeyFrame* kf) {
-    in_step = true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    rec(kf);
-    in_step = false;
-  });
-  worker.push(t.at(0));
-  while (!in_step) std::this_thread::yield();
-  worker.pause();  // returns only once the running step is done
-  EXPECT_FALSE(in_step);
-  EXPECT_EQ(rec.count(), 1u);
-  EXPECT_TRUE(worker.pause_requested());
-  worker.push(t.at(1));
-  worker.push(t.at(2));
+  SlowWorker w;
+  w.worker.push(w.t.at(0));
+  w.wait_for_a_step();
+  w.worker.pause();  // returns only once the running step is done
+  EXPECT_FALSE(w.in_step);
+  EXPECT_EQ(w.rec.count(), 1u);
+  EXPECT_TRUE(w.worker.pause_requested());
+  w.worker.push(w.t.at(1));
+  w.worker.push(w.t.at(2));
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  EXPECT_EQ(rec.count(), 1u);
-  EXPECT_EQ(worker.queued(), 2u);
-  EXPECT_FALSE(worker.idle());
-  worker.resume();
-  wait_until_idle(worker);
-  EXPECT_EQ(rec.count(), 3u);
+  EXPECT_EQ(w.rec.count(), 1u);
+  EXPECT_EQ(w.worker.queued(), 2u);
+  EXPECT_FALSE(w.worker.idle());
+  w.worker.resume();
+  wait_until_idle(w.worker);
+  EXPECT_EQ(w.rec.count(), 3u);
 }
 
 TEST(KeyFrameWorker, AFailureStopsTheWorkerAndIsKept) {
@@ -136,23 +144,15 @@ TEST(KeyFrameWorker, AFailureStopsTheWorkerAndIsKept) {
 }
 
 TEST(KeyFrameWorker, ClearDropsQueuedKeyFramesAndWaitsForTheRunningOne) {
-  Tokens t;
-  Recorder rec;
-  std::atomic<bool> in_step{false};
-  KeyFrameWorker worker(true, [&](KeyFrame* kf) {
-    in_step = true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    rec(kf);
-    in_step = false;
-  });
-  for (int i = 0; i < 6; ++i) worker.push(t.at(i));
-  while (!in_step) std::this_thread::yield();
-  worker.clear();
-  EXPECT_FALSE(in_step);
-  EXPECT_EQ(worker.queued(), 0u);
-  worker.stop();
-  EXPECT_LT(rec.count(), 6u);
-  EXPECT_GE(rec.count(), 1u);
+  SlowWorker w;
+  for (int i = 0; i < 6; ++i) w.worker.push(w.t.at(i));
+  w.wait_for_a_step();
+  w.worker.clear();
+  EXPECT_FALSE(w.in_step);
+  EXPECT_EQ(w.worker.queued(), 0u);
+  w.worker.stop();
+  EXPECT_LT(w.rec.count(), 6u);
+  EXPECT_GE(w.rec.count(), 1u);
 }
 
 }  // namespace

@@ -259,7 +259,9 @@ TEST(GlobalBundleAdjustment, RecoversEveryKeyframeAndReturnsWithoutWriting) {
   double max_t = 0;
   for (const auto& [kf, T_cw] : result.keyframes) {
     const size_t k = static_cast<size_t>(kf->id);
-    if (k == 0) EXPECT_TRUE(T_cw.isApprox(poses[0], 0.0));
+    if (k == 0) {
+      EXPECT_TRUE(T_cw.isApprox(poses[0], 0.0));
+    }
     max_t = std::max(max_t, translation_between(T_cw.inverse(), s.truth[k].inverse()));
   }
   for (const auto& [kf, T_cw] : result.keyframes) kf->T_cw = T_cw;

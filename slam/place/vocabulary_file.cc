@@ -9,8 +9,7 @@
 #include <sstream>
 #include <vector>
 
-#include <zlib.h>
-
+#include "common/binary_io.h"
 #include "common/error.h"
 #include "common/staged_file.h"
 
@@ -22,44 +21,24 @@ constexpr uint32_t kVersion = 1;
 constexpr size_t kHeaderBytes = 8 + 5 * 4;
 constexpr size_t kNodeBytes = 4 * 4 + 32;
 
-template <typename T>
-void put(std::string& out, T value) {
-  char bytes[sizeof(T)];
-  std::memcpy(bytes, &value, sizeof(T));
-  out.append(bytes, sizeof(T));
-}
-
-template <typename T>
-T take(const std::string& in, size_t& at) {
-  T value;
-  std::memcpy(&value, in.data() + at, sizeof(T));
-  at += sizeof(T);
-  return value;
-}
-
-uint32_t crc_of(const std::string& bytes, size_t n) {
-  return static_cast<uint32_t>(
-      crc32(0L, reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uInt>(n)));
-}
-
 std::string serialise(const Vocabulary& v) {
-  std::string out;
-  out.reserve(kHeaderBytes + v.n_nodes() * kNodeBytes + 4);
-  out.append(kMagic, sizeof(kMagic));
-  put<uint32_t>(out, kVersion);
-  put<uint32_t>(out, 32);
-  put<uint32_t>(out, static_cast<uint32_t>(v.branching()));
-  put<uint32_t>(out, static_cast<uint32_t>(v.levels()));
-  put<uint32_t>(out, static_cast<uint32_t>(v.n_nodes()));
+  BinaryWriter out;
+  out.bytes().reserve(kHeaderBytes + v.n_nodes() * kNodeBytes + 4);
+  out.put_bytes(kMagic, sizeof(kMagic));
+  out.put<uint32_t>(kVersion);
+  out.put<uint32_t>(32);
+  out.put<uint32_t>(static_cast<uint32_t>(v.branching()));
+  out.put<uint32_t>(static_cast<uint32_t>(v.levels()));
+  out.put<uint32_t>(static_cast<uint32_t>(v.n_nodes()));
   for (const VocabularyNode& n : v.nodes()) {
-    put<uint32_t>(out, n.parent);
-    put<uint32_t>(out, n.depth);
-    put<int32_t>(out, n.word);
-    put<float>(out, n.idf);
-    out.append(reinterpret_cast<const char*>(n.descriptor.data()), n.descriptor.size());
+    out.put<uint32_t>(n.parent);
+    out.put<uint32_t>(n.depth);
+    out.put<int32_t>(n.word);
+    out.put<float>(n.idf);
+    out.put_bytes(n.descriptor.data(), n.descriptor.size());
   }
-  put<uint32_t>(out, crc_of(out, out.size()));
-  return out;
+  out.put_checksum();
+  return std::move(out.bytes());
 }
 
 }  // namespace
@@ -87,12 +66,12 @@ Vocabulary load_vocabulary(const std::string& path) {
   if (bytes.size() < kHeaderBytes)
     fail(path, "truncated vocabulary: " + std::to_string(bytes.size()) +
                    " bytes, header alone is " + std::to_string(kHeaderBytes));
-  size_t at = sizeof(kMagic);
-  const auto version = take<uint32_t>(bytes, at);
-  const auto descriptor_bytes = take<uint32_t>(bytes, at);
-  const auto branching = take<uint32_t>(bytes, at);
-  const auto levels = take<uint32_t>(bytes, at);
-  const auto n_nodes = take<uint32_t>(bytes, at);
+  BinaryReader in_bytes(bytes, path, "vocabulary", sizeof(kMagic));
+  const auto version = in_bytes.take<uint32_t>();
+  const auto descriptor_bytes = in_bytes.take<uint32_t>();
+  const auto branching = in_bytes.take<uint32_t>();
+  const auto levels = in_bytes.take<uint32_t>();
+  const auto n_nodes = in_bytes.take<uint32_t>();
   if (version != kVersion)
     fail(path, "vocabulary format version " + std::to_string(version) + ", this build reads " +
                    std::to_string(kVersion));
@@ -106,17 +85,16 @@ Vocabulary load_vocabulary(const std::string& path) {
   if (bytes.size() > expected)
     fail(path, "vocabulary has " + std::to_string(bytes.size() - expected) +
                    " unexpected bytes after its end");
-  size_t crc_at = expected - 4;
-  if (take<uint32_t>(bytes, crc_at) != crc_of(bytes, expected - 4))
+  if (BinaryReader(bytes, path, "vocabulary", expected - 4).take<uint32_t>() !=
+      crc32_of(bytes, expected - 4))
     fail(path, "corrupt vocabulary (checksum mismatch)");
   std::vector<VocabularyNode> nodes(n_nodes);
   for (VocabularyNode& n : nodes) {
-    n.parent = take<uint32_t>(bytes, at);
-    n.depth = take<uint32_t>(bytes, at);
-    n.word = take<int32_t>(bytes, at);
-    n.idf = take<float>(bytes, at);
-    std::memcpy(n.descriptor.data(), bytes.data() + at, 32);
-    at += 32;
+    n.parent = in_bytes.take<uint32_t>();
+    n.depth = in_bytes.take<uint32_t>();
+    n.word = in_bytes.take<int32_t>();
+    n.idf = in_bytes.take<float>();
+    in_bytes.take_bytes(n.descriptor.data(), 32);
   }
   return Vocabulary(static_cast<int>(branching), static_cast<int>(levels), std::move(nodes), path);
 }
@@ -140,7 +118,7 @@ std::shared_ptr<const Vocabulary> load_vocabulary_shared(const std::string& path
 
 uint32_t vocabulary_identity(const Vocabulary& vocabulary) {
   const std::string bytes = serialise(vocabulary);
-  return crc_of(bytes, bytes.size() - 4);
+  return crc32_of(bytes, bytes.size() - 4);
 }
 
 std::string default_vocabulary_path() {

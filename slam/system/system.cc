@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/error.h"
+#include "slam/io/map_file.h"
 #include "slam/place/vocabulary_file.h"
 
 namespace depot::slam {
@@ -154,6 +155,32 @@ void System::finish() {
   }
   mapper_.throw_if_failed();
   check_workers();
+}
+
+void System::load_map(const std::string& path) {
+  if (next_frame_id_ > 0) fail(path, "a map can only be loaded before the first frame");
+  std::lock_guard<std::mutex> lock(map_.mutex());
+  load_map_file(path, settings_.camera, levels_, vocabulary_identity(places_.vocabulary()), map_);
+  for (KeyFrame* kf : map_.keyframes()) {
+    places_.describe(*kf);
+    places_.add(kf);
+  }
+  tracker_.relocalise_in_map();
+}
+
+void System::save_map(const std::string& path) const {
+  std::lock_guard<std::mutex> lock(map_.mutex());
+  if (map_.n_keyframes() == 0) fail(path, "no map to save: no frame was tracked");
+  save_map_file(map_, settings_.camera, levels_, vocabulary_identity(places_.vocabulary()), path);
+}
+
+void System::start_localisation() {
+  finish();
+  std::lock_guard<std::mutex> lock(map_.mutex());
+  if (map_.n_keyframes() == 0)
+    fail("localisation only", "there is no map to localise in (load one with --load-map)");
+  tracker_.set_localisation_only(true);
+  tracker_.relocalise_in_map();
 }
 
 std::vector<StampedPose> System::trajectory() const {

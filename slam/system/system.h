@@ -66,6 +66,17 @@ class System {
   // Throws depot::Error when local mapping failed.
   void finish();
 
+  // Map reuse (slam/io/map_file.h). load_map: before the first frame, the
+  // saved map becomes this system's (its vocabulary, camera and ORB
+  // pyramid must be this run's), and the first frame relocalises in it.
+  // save_map: the map as it is (call finish() first); a staged write.
+  // start_localisation: from the next frame on, track against the map as it
+  // is without changing it (no keyframes, no points, no reset), starting
+  // with a relocalisation; depot::Error when the map is empty.
+  void load_map(const std::string& path);
+  void save_map(const std::string& path) const;
+  void start_localisation();
+
   // Camera-to-world pose of every tracked frame (state NEW_MAP, OK or
   // RELOCALIZED, tracking_state.h) in the current map. Frames without a pose
   // (not initialised, lost, or tracked in a map a reset abandoned) are left
@@ -80,6 +91,8 @@ class System {
   LocalMapperStats mapping_stats() const { return mapper_.stats(); }
   std::vector<LoopClosure> loop_closures() const { return loop_closer_.closures(); }
   int loops_refused() const { return loop_closer_.refused(); }
+  // Global bundle adjustments applied after loops.
+  int global_adjustments() const { return loop_closer_.global_adjustments(); }
   const SlamSettings& settings() const { return settings_; }
   int resets() const { return resets_; }
 

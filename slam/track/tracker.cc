@@ -45,7 +45,7 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
   bool relocalized = false;
   FrameState frame_state = FrameState::kNotInitialized;
   if (state_ == TrackingState::kNotInitialized) {
-    ok = initialize(frame);
+    ok = !localisation_only_ && initialize(frame);
     if (ok) {
       frame_state = FrameState::kNewMap;
       local.method = TrackingMethod::kInitialization;
@@ -79,7 +79,7 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
     if (ok) {
       velocity_ = frame.T_cw * last_.T_cw.inverse();
       has_velocity_ = last_.has_pose;
-      if (need_keyframe(frame, local.inliers)) {
+      if (!localisation_only_ && need_keyframe(frame, local.inliers)) {
         create_keyframe(frame);
         local.new_keyframe = true;
       }
@@ -98,7 +98,7 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
                            frame.T_cw * frame.reference->T_cw.inverse(), frame_state});
   else
     trajectory_.push_back({frame.timestamp, nullptr, Pose::Identity(), frame_state});
-  reset_wanted_ = state_ == TrackingState::kLost && map_.n_keyframes() <= 5;
+  reset_wanted_ = !localisation_only_ && state_ == TrackingState::kLost && map_.n_keyframes() <= 5;
   if (ok) {
     if (frame.reference) last_T_cr_ = frame.T_cw * frame.reference->T_cw.inverse();
     last_ = std::move(frame);
@@ -107,6 +107,15 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
   current_stats_ = nullptr;
   if (stats) *stats = local;
   return state_;
+}
+
+void Tracker::relocalise_in_map() {
+  reset_wanted_ = false;
+  if (map_.n_keyframes() == 0) return;  // nothing to relocalise against
+  state_ = TrackingState::kLost;
+  has_velocity_ = false;
+  last_ = Frame();
+  reference_ = nullptr;
 }
 
 void Tracker::follow_replaced_points_in_last_frame() {

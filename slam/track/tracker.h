@@ -87,6 +87,13 @@ class Tracker {
   // (they belong to the abandoned map: state ABANDONED). The caller holds
   // the map lock and clears the map.
   void reset();
+  // The next frame relocalises against the map as it is (a loaded map),
+  // anywhere in it, instead of starting one. The caller holds the map lock.
+  void relocalise_in_map();
+  // Localisation only: no keyframes or points are made and a lost camera
+  // never resets the map.
+  void set_localisation_only(bool on) { localisation_only_ = on; }
+  bool localisation_only() const { return localisation_only_; }
   const Frame& last_frame() const { return last_; }
   // Every frame given so far, in order (tracked or not). Resolving a tracked
   // entry's pose reads its reference keyframe: hold the map lock.
@@ -114,6 +121,7 @@ class Tracker {
   KeyFrameDatabase* places_;
   TrackingState state_ = TrackingState::kNotInitialized;
   bool reset_wanted_ = false;
+  bool localisation_only_ = false;
   Frame last_;
   Pose last_T_cr_ = Pose::Identity();  // last frame relative to its reference keyframe
   Pose velocity_ = Pose::Identity();

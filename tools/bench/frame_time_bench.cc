@@ -59,14 +59,15 @@ int main(int argc, char** argv) {
       fs::temp_directory_path() / ("depot_frame_time_bench_" + std::to_string(getpid()));
   int over_goal = 0, runs = 0;
   try {
-    std::printf(
-        "depot_frame_time_bench: first %d frames of each scenario, threaded mapping, %s\n",
-        frames, rate_hz > 0 ? (std::to_string(static_cast<int>(rate_hz)) + " Hz camera").c_str()
+    std::printf("depot_frame_time_bench: first %d frames of each scenario, threaded mapping, %s\n",
+                frames,
+                rate_hz > 0 ? (std::to_string(static_cast<int>(rate_hz)) + " Hz camera").c_str()
                             : "input as fast as possible");
-    std::printf("  %-28s %-9s %9s %9s %8s %6s %10s\n", "scenario", "mode", "median ms",
-                "p95 ms", "p95/med", "lost", "lost ms");
+    std::printf("  %-28s %-9s %9s %9s %8s %6s %10s\n", "scenario", "mode", "median ms", "p95 ms",
+                "p95/med", "lost", "lost ms");
     for (const std::string& name : names) {
-      const depot::sim::Scenario scenario = depot::sim::load_scenario(folder + "/" + name + ".yaml");
+      const depot::sim::Scenario scenario =
+          depot::sim::load_scenario(folder + "/" + name + ".yaml");
       depot::sim::RenderRequest request;
       request.dataset.output = (scratch / name).string();
       request.frames = frames;

@@ -102,9 +102,9 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
                 &l == &s.loops.front() ? " (" : "; ", l.keyframe, l.timestamp, l.matched, l.matches,
                 l.correction_m, l.path_m);
   std::printf(
-      "%s, %d look-alike places refused; relocalisation median %.1f ms over %d lost "
-      "frames\n",
-      s.loops.empty() ? "" : ")", s.loops_refused, s.lost_ms, s.lost);
+      "%s, %d global bundle adjustments, %d look-alike places refused; relocalisation median "
+      "%.1f ms over %d lost frames\n",
+      s.loops.empty() ? "" : ")", s.global_adjustments, s.loops_refused, s.lost_ms, s.lost);
   if (a.options.rate_hz > 0) {
     std::printf("input %g Hz, run-ahead %s: %zu frames handled after their turn\n",
                 a.options.rate_hz, a.options.run_ahead ? "on" : "off", s.late_frames);
@@ -211,6 +211,13 @@ void register_slam_commands(CLI::App& app) {
   run->add_flag_callback(
       "--no-loop-closing", [args] { args->options.loop_closing = false; },
       "Do not detect or close loops (place recognition still relocalises)");
+  run->add_option("--load-map", args->options.load_map,
+                  "Start from a map saved by --save-map (same vocabulary and camera); the first "
+                  "frame relocalises in it");
+  run->add_flag("--localise-only", args->options.localise_only,
+                "Track against the loaded map without changing it: no keyframes, no points");
+  run->add_option("--save-map", args->options.save_map,
+                  "Write the map at the end (versioned binary with a checksum; staged)");
   run->add_flag("-q,--quiet", args->options.quiet, "No progress line");
   run->add_option("--rate", args->options.rate_hz,
                   "Input rate (Hz) of an emulated camera: frame i arrives at i / HZ s (0 = as "

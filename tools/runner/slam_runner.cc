@@ -224,6 +224,9 @@ RunSummary run_sequence(const RunOptions& o) {
   }
   if (o.sync) settings.threaded_mapping = false;
   if (!o.vocabulary.empty()) settings.vocabulary = o.vocabulary;
+  if (o.localise_only && o.load_map.empty())
+    fail("--localise-only", "needs a map to localise in (--load-map M)");
+  if (!o.save_map.empty()) check_output_file(o.save_map);
   if (!o.loop_closing) settings.loop_closing = false;
   sequence.set_depth_factor(settings.camera.depth_factor);
   if (o.frames && *o.frames > sequence.size())
@@ -277,6 +280,8 @@ RunSummary run_sequence(const RunOptions& o) {
   }
 
   slam::System system(settings, filter);
+  if (!o.load_map.empty()) system.load_map(o.load_map);
+  if (o.localise_only) system.start_localisation();
   std::vector<double> total, extract, track, filter_ms, wait_ms, detect_ms, flow_ms;
   Progress progress("slam " + o.mode, n, !o.quiet);
   // Two frames' images, frame k in slot k % 2: a frame handed over ahead
@@ -377,6 +382,7 @@ RunSummary run_sequence(const RunOptions& o) {
   }
   progress.finish();
   system.finish();
+  if (!o.save_map.empty()) system.save_map(o.save_map);
   summary.frames = n;
   summary.trajectory = system.trajectory();
   summary.frame_states = system.frame_states();
@@ -406,6 +412,7 @@ RunSummary run_sequence(const RunOptions& o) {
   summary.lost_ms = relocalising.empty() ? 0 : percentile(relocalising, 0.5);
   summary.loops = system.loop_closures();
   summary.loops_refused = system.loops_refused();
+  summary.global_adjustments = system.global_adjustments();
   if (stats) stats->commit();
   if (keypoint_rows) keypoint_rows->commit();
   if (overlays) {

@@ -23,6 +23,11 @@ struct RunOptions {
   std::string settings;      // optional settings YAML
   std::string vocabulary;    // place-recognition vocabulary ("" = the settings' or the default)
   bool loop_closing = true;  // false: off whatever the settings say
+  // Map reuse (slam/io/map_file.h): start from a saved map; only localise
+  // in it (needs load_map); write the map at the end.
+  std::string load_map;
+  bool localise_only = false;
+  std::string save_map;
   std::string mode = "orb";  // orb | orb+yolo | orb+lk | full | masked
   std::string detector =
       "";  // sim | darknet | xl | fastestdet | yolov5 | file ("" = sim on simulated data)
@@ -78,7 +83,8 @@ struct RunSummary {
   double wait_p95_ms = 0;
   double lost_ms = 0;  // median time of a frame tracked while lost (relocalisation tries)
   std::vector<slam::LoopClosure> loops;
-  int loops_refused = 0;  // look-alike places refused by the plausibility test
+  int loops_refused = 0;       // look-alike places refused by the plausibility test
+  int global_adjustments = 0;  // global bundle adjustments applied after loops
   // With rate_hz: frames whose turn (the arrival of frame i, or of frame i+1
   // with run-ahead) had passed when the loop got to them: the tracker lagged.
   size_t late_frames = 0;

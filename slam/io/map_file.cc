@@ -1,0 +1,281 @@
+#include "slam/io/map_file.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unordered_map>
+#include <vector>
+
+#include "common/binary_io.h"
+#include "common/error.h"
+#include "common/staged_file.h"
+#include "slam/data/map_point.h"
+
+namespace depot::slam {
+namespace {
+
+constexpr char kMagic[8] = {'D', 'E', 'P', 'O', 'T', 'M', 'A', 'P'};
+constexpr uint32_t kVersion = 1;
+constexpr int kDescriptorBytes = 32;
+
+void put_pose(BinaryWriter& out, const Pose& T) {
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) out.put<double>(T.matrix()(r, c));
+}
+
+Pose take_pose(BinaryReader& in) {
+  Pose T = Pose::Identity();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) T.matrix()(r, c) = in.take<double>();
+  return T;
+}
+
+void put_camera(BinaryWriter& out, const PinholeCamera& c) {
+  out.put<int32_t>(c.width);
+  out.put<int32_t>(c.height);
+  for (double v : {c.fx, c.fy, c.cx, c.cy, c.bf}) out.put<double>(v);
+}
+
+bool same_camera(const PinholeCamera& a, const PinholeCamera& b) {
+  auto close = [](double x, double y) {
+    return std::abs(x - y) <= 1e-6 * std::max(1.0, std::abs(x));
+  };
+  return a.width == b.width && a.height == b.height && close(a.fx, b.fx) && close(a.fy, b.fy) &&
+         close(a.cx, b.cx) && close(a.cy, b.cy) && close(a.bf, b.bf);
+}
+
+std::string describe(const PinholeCamera& c) {
+  std::ostringstream s;
+  s << c.width << "x" << c.height << " fx " << c.fx << " fy " << c.fy << " cx " << c.cx << " cy "
+    << c.cy;
+  return s.str();
+}
+
+}  // namespace
+
+void save_map_file(const Map& map, const PinholeCamera& camera, const ScaleLevels& levels,
+                   uint32_t vocabulary_identity, const std::string& path) {
+  BinaryWriter out;
+  out.put_bytes(kMagic, sizeof(kMagic));
+  out.put<uint32_t>(kVersion);
+  out.put<uint32_t>(vocabulary_identity);
+  put_camera(out, camera);
+  out.put<int32_t>(levels.n_levels);
+  out.put<float>(levels.scale_factor);
+
+  out.put<uint32_t>(static_cast<uint32_t>(map.n_keyframes()));
+  for (const KeyFrame* kf : map.keyframes()) {
+    const Features& f = kf->features;
+    out.put<int64_t>(kf->id);
+    out.put<int64_t>(kf->frame_id);
+    out.put<double>(kf->timestamp);
+    put_pose(out, kf->T_cw);
+    const KeyFrame* parent = kf->parent();
+    out.put<int64_t>(parent && !parent->bad ? parent->id : -1);
+    std::vector<int64_t> loops;
+    for (const KeyFrame* l : kf->loop_edges)
+      if (!l->bad) loops.push_back(l->id);
+    out.put<uint32_t>(static_cast<uint32_t>(loops.size()));
+    for (int64_t id : loops) out.put<int64_t>(id);
+    const std::vector<KeyFrame*> covisible = kf->covisibles();
+    out.put<uint32_t>(static_cast<uint32_t>(covisible.size()));
+    for (KeyFrame* c : covisible) {
+      out.put<int64_t>(c->id);
+      out.put<int32_t>(kf->weight(c));
+    }
+    out.put<uint32_t>(static_cast<uint32_t>(f.size()));
+    for (size_t i = 0; i < f.size(); ++i) {
+      const cv::KeyPoint& k = f.keypoints[i];
+      for (float v : {k.pt.x, k.pt.y, k.size, k.angle, k.response}) out.put<float>(v);
+      out.put<int32_t>(k.octave);
+      out.put<float>(f.depth[i]);
+      const MapPoint* mp = kf->map_points[i];
+      out.put<int64_t>(mp && !mp->bad ? mp->id : -1);
+    }
+    for (size_t i = 0; i < f.size(); ++i)
+      out.put_bytes(f.descriptors.ptr<uint8_t>(static_cast<int>(i)), kDescriptorBytes);
+  }
+
+  out.put<uint32_t>(static_cast<uint32_t>(map.n_map_points()));
+  for (const MapPoint* mp : map.map_points()) {
+    out.put<int64_t>(mp->id);
+    for (int k = 0; k < 3; ++k) out.put<double>(mp->position[k]);
+    out.put<int64_t>(mp->reference && !mp->reference->bad ? mp->reference->id : -1);
+    out.put<int64_t>(mp->first_keyframe_id);
+    out.put<int32_t>(mp->visible);
+    out.put<int32_t>(mp->found);
+    static const uint8_t kNoDescriptor[kDescriptorBytes] = {};
+    const bool has_descriptor = mp->descriptor.total() == kDescriptorBytes;
+    out.put_bytes(has_descriptor ? mp->descriptor.ptr<uint8_t>(0) : kNoDescriptor,
+                  kDescriptorBytes);
+    for (int k = 0; k < 3; ++k) out.put<double>(mp->normal[k]);
+    out.put<float>(mp->min_distance);
+    out.put<float>(mp->max_distance);
+  }
+  out.put_checksum();
+
+  StagedFile file(path);
+  file.stream().write(out.bytes().data(), static_cast<std::streamsize>(out.bytes().size()));
+  file.commit();
+}
+
+MapFileInfo load_map_file(const std::string& path, const PinholeCamera& camera,
+                          const ScaleLevels& levels, uint32_t vocabulary_identity, Map& map) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) fail(path, "no such map file");
+  if (std::filesystem::is_directory(path, ec)) fail(path, "is a folder, not a map file");
+  if (map.n_keyframes() > 0) fail(path, "a map can only be loaded before any frame is tracked");
+  std::ifstream file(path, std::ios::binary);
+  if (!file) fail(path, "cannot open the map file");
+  std::ostringstream buffer;
+  buffer << file.rdbuf();
+  const std::string bytes = buffer.str();
+  if (bytes.size() < sizeof(kMagic) || bytes.compare(0, sizeof(kMagic), kMagic, sizeof(kMagic)))
+    fail(path, "not a depot map (no DEPOTMAP header; write one with `depot slam run --save-map`)");
+
+  MapFileInfo info;
+  BinaryReader in(bytes, path, "map", sizeof(kMagic));
+  info.version = in.take<uint32_t>();
+  if (info.version != kVersion)
+    fail(path, "map format version " + std::to_string(info.version) + ", this build reads " +
+                   std::to_string(kVersion));
+  if (bytes.size() < sizeof(kMagic) + 8 + 4) fail(path, "truncated map");
+  if (BinaryReader(bytes, path, "map", bytes.size() - 4).take<uint32_t>() !=
+      crc32_of(bytes, bytes.size() - 4))
+    fail(path, "corrupt or truncated map (checksum mismatch)");
+  info.vocabulary = in.take<uint32_t>();
+  if (info.vocabulary != vocabulary_identity)
+    fail(path, "map built with another vocabulary (identity " + std::to_string(info.vocabulary) +
+                   ", this run's is " + std::to_string(vocabulary_identity) +
+                   "; run with the vocabulary that made it, --vocabulary F)");
+  info.camera = camera;
+  info.camera.width = in.take<int32_t>();
+  info.camera.height = in.take<int32_t>();
+  for (double* v :
+       {&info.camera.fx, &info.camera.fy, &info.camera.cx, &info.camera.cy, &info.camera.bf})
+    *v = in.take<double>();
+  if (!same_camera(info.camera, camera))
+    fail(path, "map made with another camera (" + describe(info.camera) + "; this dataset's is " +
+                   describe(camera) + ")");
+  info.levels = in.take<int32_t>();
+  info.scale_factor = in.take<float>();
+  if (info.levels != levels.n_levels || std::abs(info.scale_factor - levels.scale_factor) > 1e-6f)
+    fail(path, "map made with another ORB pyramid (" + std::to_string(info.levels) +
+                   " levels, scale " + std::to_string(info.scale_factor) + ")");
+
+  struct KeyFrameRecord {
+    KeyFrame* kf;
+    int64_t parent;
+    std::vector<int64_t> loops, points;
+    std::vector<std::pair<int64_t, int>> covisible;
+  };
+  std::vector<KeyFrameRecord> records;
+  std::unordered_map<int64_t, KeyFrame*> kf_by_id;
+  const uint32_t n_keyframes = in.take<uint32_t>();
+  for (uint32_t k = 0; k < n_keyframes; ++k) {
+    KeyFrameRecord r;
+    const int64_t id = in.take<int64_t>();
+    const int64_t frame_id = in.take<int64_t>();
+    const double timestamp = in.take<double>();
+    const Pose T_cw = take_pose(in);
+    r.parent = in.take<int64_t>();
+    r.loops.resize(in.take<uint32_t>());
+    for (int64_t& l : r.loops) l = in.take<int64_t>();
+    const uint32_t n_covisible = in.take<uint32_t>();
+    if (static_cast<uint64_t>(n_covisible) * 12 > in.left()) fail(path, "truncated map");
+    r.covisible.resize(n_covisible);
+    for (auto& [other, weight] : r.covisible) {
+      other = in.take<int64_t>();
+      weight = in.take<int32_t>();
+    }
+    const uint32_t n = in.take<uint32_t>();
+    if (static_cast<uint64_t>(n) * (7 * 4 + 8 + kDescriptorBytes) > in.left())
+      fail(path, "truncated map (keyframe " + std::to_string(id) + " claims " + std::to_string(n) +
+                     " keypoints)");
+    std::vector<cv::KeyPoint> keypoints(n);
+    std::vector<float> depth(n);
+    r.points.resize(n);
+    for (uint32_t i = 0; i < n; ++i) {
+      cv::KeyPoint& kp = keypoints[i];
+      kp.pt.x = in.take<float>();
+      kp.pt.y = in.take<float>();
+      kp.size = in.take<float>();
+      kp.angle = in.take<float>();
+      kp.response = in.take<float>();
+      kp.octave = in.take<int32_t>();
+      if (kp.octave < 0 || kp.octave >= levels.n_levels)
+        fail(path, "corrupt map (keyframe " + std::to_string(id) + ": octave " +
+                       std::to_string(kp.octave) + ")");
+      depth[i] = in.take<float>();
+      r.points[i] = in.take<int64_t>();
+    }
+    cv::Mat descriptors(static_cast<int>(n), kDescriptorBytes, CV_8U);
+    for (uint32_t i = 0; i < n; ++i)
+      in.take_bytes(descriptors.ptr<uint8_t>(static_cast<int>(i)), kDescriptorBytes);
+    Frame frame(frame_id, timestamp,
+                Features(std::move(keypoints), descriptors, std::move(depth), camera, &levels));
+    frame.T_cw = T_cw;
+    frame.has_pose = true;
+    r.kf = map.create_keyframe(frame);
+    if (!kf_by_id.emplace(id, r.kf).second)
+      fail(path, "corrupt map (keyframe " + std::to_string(id) + " twice)");
+    records.push_back(std::move(r));
+  }
+
+  std::unordered_map<int64_t, MapPoint*> mp_by_id;
+  const uint32_t n_points = in.take<uint32_t>();
+  for (uint32_t p = 0; p < n_points; ++p) {
+    const int64_t id = in.take<int64_t>();
+    Eigen::Vector3d x;
+    for (int k = 0; k < 3; ++k) x[k] = in.take<double>();
+    const int64_t reference = in.take<int64_t>();
+    const auto ref = kf_by_id.find(reference);
+    MapPoint* mp = map.create_map_point(x, ref == kf_by_id.end() ? nullptr : ref->second);
+    const int64_t first_keyframe = in.take<int64_t>();
+    const auto first = kf_by_id.find(first_keyframe);
+    mp->first_keyframe_id = first == kf_by_id.end() ? 0 : first->second->id;
+    mp->visible = in.take<int32_t>();
+    mp->found = in.take<int32_t>();
+    mp->descriptor = cv::Mat(1, kDescriptorBytes, CV_8U);
+    in.take_bytes(mp->descriptor.ptr<uint8_t>(0), kDescriptorBytes);
+    for (int k = 0; k < 3; ++k) mp->normal[k] = in.take<double>();
+    mp->min_distance = in.take<float>();
+    mp->max_distance = in.take<float>();
+    if (!mp_by_id.emplace(id, mp).second)
+      fail(path, "corrupt map (point " + std::to_string(id) + " twice)");
+  }
+  if (in.left() != 4)
+    fail(path, "corrupt map (" + std::to_string(in.left() - 4) + " unexpected bytes)");
+
+  // Observations, covisibility and the spanning tree as they were: the
+  // loaded map is the saved one, not a recomputation of it.
+  for (KeyFrameRecord& r : records)
+    for (size_t i = 0; i < r.points.size(); ++i) {
+      if (r.points[i] < 0) continue;
+      const auto it = mp_by_id.find(r.points[i]);
+      if (it == mp_by_id.end())
+        fail(path, "corrupt map (a keyframe sees point " + std::to_string(r.points[i]) +
+                       ", which is not in it)");
+      it->second->add_observation(r.kf, i);
+      r.kf->add_map_point(it->second, i);
+    }
+  for (MapPoint* mp : map.map_points())
+    if (!mp->reference && !mp->observations.empty())
+      mp->reference = mp->observations.begin()->first;
+  for (KeyFrameRecord& r : records) {
+    for (const auto& [other, weight] : r.covisible)
+      if (const auto it = kf_by_id.find(other); it != kf_by_id.end())
+        r.kf->add_connection(it->second, weight);
+    const auto parent = kf_by_id.find(r.parent);
+    if (parent != kf_by_id.end()) r.kf->set_parent(parent->second);
+    for (int64_t l : r.loops)
+      if (const auto it = kf_by_id.find(l); it != kf_by_id.end())
+        r.kf->loop_edges.insert(it->second);
+  }
+  info.keyframes = map.n_keyframes();
+  info.points = map.n_map_points();
+  return info;
+}
+
+}  // namespace depot::slam

@@ -1,0 +1,156 @@
+// The map file on a synthetic map (tests/support/ba_scene.h): what is
+// loaded is what was saved, and every bad file is one clear error.
+#include "slam/io/map_file.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include "common/error.h"
+#include "slam/data/map_point.h"
+#include "tests/support/ba_scene.h"
+
+namespace depot::slam {
+namespace {
+
+using namespace depot::slam::test;
+
+class MapFileTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    build_ba_scene(scene_, 41);
+    for (MapPoint* mp : scene_.map.map_points()) mp->update_descriptor();
+    // A spanning tree, a loop edge and a culled keyframe and point, as a
+    // real map has them.
+    scene_.kfs[4]->loop_edges.insert(scene_.kfs[0]);
+    scene_.kfs[0]->loop_edges.insert(scene_.kfs[4]);
+    scene_.kfs[2]->set_bad();
+    scene_.map.erase_keyframe(scene_.kfs[2]);
+    MapPoint* culled = *scene_.map.map_points().begin();
+    culled->set_bad();
+    scene_.map.erase_map_point(culled);
+    path_ = (std::filesystem::temp_directory_path() /
+             ("depot_map_file_test_" + std::to_string(::getpid()) + ".map"))
+                .string();
+    save_map_file(scene_.map, camera_, levels(), kVocabulary, path_);
+  }
+  void TearDown() override { std::filesystem::remove(path_); }
+
+  std::string bytes() const {
+    std::ifstream in(path_, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }
+  void write(const std::string& b) const {
+    std::ofstream out(path_, std::ios::binary | std::ios::trunc);
+    out << b;
+  }
+  // The error message loading gives, "" when it loads.
+  std::string load_error(uint32_t vocabulary = kVocabulary,
+                         const PinholeCamera* camera = nullptr) const {
+    Map map;
+    try {
+      load_map_file(path_, camera ? *camera : camera_, levels(), vocabulary, map);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  }
+
+  static constexpr uint32_t kVocabulary = 0x1234abcd;
+  BaScene scene_;
+  PinholeCamera camera_;
+  std::string path_;
+};
+
+TEST_F(MapFileTest, WhatIsLoadedIsWhatWasSaved) {
+  Map loaded;
+  const MapFileInfo info = load_map_file(path_, camera_, levels(), kVocabulary, loaded);
+  EXPECT_EQ(info.version, 1u);
+  EXPECT_EQ(info.keyframes, scene_.map.n_keyframes());
+  EXPECT_EQ(info.points, scene_.map.n_map_points());
+  ASSERT_EQ(loaded.n_keyframes(), 4u);  // the culled one left out
+  ASSERT_EQ(loaded.n_map_points(), scene_.map.n_map_points());
+  // Saved order = id order: the i-th saved keyframe is the i-th loaded one.
+  std::vector<KeyFrame*> a(scene_.map.keyframes().begin(), scene_.map.keyframes().end());
+  std::vector<KeyFrame*> b(loaded.keyframes().begin(), loaded.keyframes().end());
+  std::map<const KeyFrame*, const KeyFrame*> same;
+  for (size_t k = 0; k < a.size(); ++k) same[a[k]] = b[k];
+  std::vector<MapPoint*> pa(scene_.map.map_points().begin(), scene_.map.map_points().end());
+  std::vector<MapPoint*> pb(loaded.map_points().begin(), loaded.map_points().end());
+  std::map<const MapPoint*, const MapPoint*> same_point;
+  for (size_t p = 0; p < pa.size(); ++p) same_point[pa[p]] = pb[p];
+  for (size_t k = 0; k < a.size(); ++k) {
+    EXPECT_TRUE(a[k]->T_cw.isApprox(b[k]->T_cw, 0.0));
+    EXPECT_EQ(a[k]->timestamp, b[k]->timestamp);
+    ASSERT_EQ(a[k]->features.size(), b[k]->features.size());
+    for (size_t i = 0; i < a[k]->features.size(); ++i) {
+      EXPECT_EQ(a[k]->features.keypoints[i].pt, b[k]->features.keypoints[i].pt);
+      EXPECT_EQ(a[k]->features.keypoints[i].octave, b[k]->features.keypoints[i].octave);
+      EXPECT_EQ(a[k]->features.depth[i], b[k]->features.depth[i]);
+      EXPECT_NEAR(a[k]->features.u_right[i], b[k]->features.u_right[i], 1e-3);
+      const MapPoint* mp = a[k]->map_points[i];
+      EXPECT_EQ(mp && !mp->bad ? same_point[mp] : nullptr, b[k]->map_points[i]);
+    }
+    EXPECT_EQ(cv::norm(a[k]->features.descriptors, b[k]->features.descriptors, cv::NORM_HAMMING),
+              0);
+    EXPECT_EQ(a[k]->parent() ? same[a[k]->parent()] : nullptr, b[k]->parent());
+    const std::vector<KeyFrame*> ca = a[k]->covisibles(), cb = b[k]->covisibles();
+    ASSERT_EQ(ca.size(), cb.size());
+    for (size_t c = 0; c < ca.size(); ++c) {
+      EXPECT_EQ(same[ca[c]], cb[c]);
+      EXPECT_EQ(a[k]->weight(ca[c]), b[k]->weight(cb[c]));
+    }
+    EXPECT_EQ(a[k]->loop_edges.size(), b[k]->loop_edges.size());
+  }
+  for (size_t p = 0; p < pa.size(); ++p) {
+    EXPECT_EQ(pa[p]->position, pb[p]->position);
+    EXPECT_EQ(pa[p]->normal, pb[p]->normal);
+    EXPECT_EQ(pa[p]->min_distance, pb[p]->min_distance);
+    EXPECT_EQ(pa[p]->max_distance, pb[p]->max_distance);
+    EXPECT_EQ(cv::norm(pa[p]->descriptor, pb[p]->descriptor, cv::NORM_HAMMING), 0);
+    EXPECT_EQ(pa[p]->observations.size(), pb[p]->observations.size());
+  }
+}
+
+TEST_F(MapFileTest, BadFilesAreOneClearError) {
+  const std::string good = bytes();
+  auto expect = [&](const std::string& error, const std::string& needle) {
+    EXPECT_NE(error.find(path_), std::string::npos) << error;
+    EXPECT_NE(error.find(needle), std::string::npos) << error;
+  };
+  write(good.substr(0, good.size() / 2));
+  expect(load_error(), "checksum");
+  write(good.substr(0, 10));
+  expect(load_error(), "truncated");
+  std::string corrupt = good;
+  corrupt[good.size() / 2] ^= 0x40;
+  write(corrupt);
+  expect(load_error(), "checksum");
+  std::string other_version = good;
+  other_version[8] = 2;
+  write(other_version);
+  expect(load_error(), "version 2, this build reads 1");
+  write("not a map at all");
+  expect(load_error(), "not a depot map");
+  write(good);
+  EXPECT_EQ(load_error(), "");
+  expect(load_error(kVocabulary + 1), "another vocabulary");
+  PinholeCamera other = camera_;
+  other.fx += 10;
+  expect(load_error(kVocabulary, &other), "another camera");
+  std::filesystem::remove(path_);
+  expect(load_error(), "no such map file");
+}
+
+TEST_F(MapFileTest, LoadsOnlyIntoAnEmptyMap) {
+  EXPECT_THROW(load_map_file(path_, camera_, levels(), kVocabulary, scene_.map), Error);
+}
+
+}  // namespace
+}  // namespace depot::slam
