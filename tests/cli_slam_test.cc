@@ -6,7 +6,9 @@
 #include <iterator>
 #include <map>
 
+#include <assimp/scene.h>
 #include <gtest/gtest.h>
+#include <assimp/Importer.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "common/tum_io.h"
@@ -380,6 +382,30 @@ TEST(CliSlam, SavesAMapAndLocalisesInIt) {
   };
   EXPECT_EQ(keyframes(again.output), keyframes(save.output)) << again.output;
   EXPECT_TRUE(fs::exists(out));
+
+  // The map's points as PLY, read back by assimp (a library the simulator
+  // uses): as many points as the map has, each observed at least twice.
+  DepotResult info = depot("slam map info " + map);
+  ASSERT_EQ(info.code, 0) << info.output;
+  const std::string ply = temp_path("points") + ".ply";
+  DepotResult exported = depot("slam map export " + map + " -o " + ply);
+  ASSERT_EQ(exported.code, 0) << exported.output;
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(ply, 0);
+  ASSERT_NE(scene, nullptr) << importer.GetErrorString();
+  ASSERT_EQ(scene->mNumMeshes, 1u);
+  const size_t at = info.output.find(" map points");
+  const std::string n_points = info.output.substr(info.output.rfind(' ', at - 1) + 1,
+                                                  at - info.output.rfind(' ', at - 1) - 1);
+  EXPECT_EQ(std::to_string(scene->mMeshes[0]->mNumVertices), n_points) << info.output;
+  EXPECT_TRUE(scene->mMeshes[0]->HasVertexColors(0));
+  std::string damaged = read_text(map);
+  damaged[damaged.size() / 3] ^= 4;
+  const std::string damaged_map = temp_path("damaged") + ".map";
+  std::ofstream(damaged_map, std::ios::binary) << damaged;
+  expect_one_error_line(depot("slam map export " + damaged_map + " -o " + ply + ".x"),
+                        "checksum mismatch");
+  EXPECT_FALSE(fs::exists(ply + ".x"));
 
   const std::string never = temp_path("never") + ".txt";
   auto expect_map_error = [&](const std::string& flags, const std::string& needle) {

@@ -61,9 +61,16 @@ export ASAN_OPTIONS="$(grep -v '^#' "$supp/asan.options" | paste -sd: -):${ASAN_
 export UBSAN_OPTIONS="suppressions=$supp/ubsan.supp print_stacktrace=1 halt_on_error=1 ${UBSAN_OPTIONS:-}"
 export LSAN_OPTIONS="suppressions=$supp/lsan.supp ${LSAN_OPTIONS:-}"
 
+# The normal build's vocabulary (tools/test.sh makes it) is the one this
+# build would train from the same inputs: copy it rather than train it again
+# with an instrumented depot.
+vocabulary=()
+if [ -f build/vocabulary/depot_orb.voc ]; then
+  vocabulary=(-DDEPOT_VOCABULARY_SOURCE="$here/build/vocabulary/depot_orb.voc")
+fi
 start=$(date +%s)
 cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDEPOT_BUILD_TESTS=ON \
-  -DDEPOT_BUILD_BENCH=OFF -DDEPOT_SANITIZE="$kind" >/dev/null
+  -DDEPOT_BUILD_BENCH=OFF -DDEPOT_SANITIZE="$kind" "${vocabulary[@]}" >/dev/null
 cmake --build "$dir" -j"$(nproc)"
 built=$(date +%s)
 status=0

@@ -32,6 +32,16 @@ Features::Features(std::vector<cv::KeyPoint> kps, cv::Mat desc, std::vector<floa
   index();
 }
 
+void Features::set_colours(const cv::Mat& bgr) {
+  colours.assign(keypoints.size(), cv::Vec3b(0, 0, 0));
+  if (bgr.type() != CV_8UC3) return;
+  for (size_t i = 0; i < keypoints.size(); ++i) {
+    const int x = static_cast<int>(std::lround(keypoints[i].pt.x));
+    const int y = static_cast<int>(std::lround(keypoints[i].pt.y));
+    if (x >= 0 && y >= 0 && x < bgr.cols && y < bgr.rows) colours[i] = bgr.at<cv::Vec3b>(y, x);
+  }
+}
+
 void Features::index() {
   const size_t n = keypoints.size();
   u_right.assign(n, -1.0f);

@@ -35,6 +35,10 @@ class Features {
   cv::Mat descriptors;         // N x 32 CV_8U
   std::vector<float> depth;    // metres, <= 0 when unknown
   std::vector<float> u_right;  // virtual right coordinate, < 0 when unknown
+  // BGR colour under each keypoint (set_colours; empty when not known):
+  // what a map export paints its points with.
+  std::vector<cv::Vec3b> colours;
+  void set_colours(const cv::Mat& bgr);
   const ScaleLevels* levels = nullptr;
   PinholeCamera camera;
 

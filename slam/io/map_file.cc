@@ -90,6 +90,8 @@ void save_map_file(const Map& map, const PinholeCamera& camera, const ScaleLevel
       for (float v : {k.pt.x, k.pt.y, k.size, k.angle, k.response}) out.put<float>(v);
       out.put<int32_t>(k.octave);
       out.put<float>(f.depth[i]);
+      const cv::Vec3b colour = i < f.colours.size() ? f.colours[i] : cv::Vec3b(0, 0, 0);
+      out.put_bytes(colour.val, 3);
       const MapPoint* mp = kf->map_points[i];
       out.put<int64_t>(mp && !mp->bad ? mp->id : -1);
     }
@@ -120,20 +122,21 @@ void save_map_file(const Map& map, const PinholeCamera& camera, const ScaleLevel
   file.commit();
 }
 
-MapFileInfo load_map_file(const std::string& path, const PinholeCamera& camera,
-                          const ScaleLevels& levels, uint32_t vocabulary_identity, Map& map) {
+namespace {
+
+// Reads the file and checks its header and checksum; `in` is left after the
+// header.
+MapFileInfo read_header(const std::string& path, std::string& bytes) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) fail(path, "no such map file");
   if (std::filesystem::is_directory(path, ec)) fail(path, "is a folder, not a map file");
-  if (map.n_keyframes() > 0) fail(path, "a map can only be loaded before any frame is tracked");
   std::ifstream file(path, std::ios::binary);
   if (!file) fail(path, "cannot open the map file");
   std::ostringstream buffer;
   buffer << file.rdbuf();
-  const std::string bytes = buffer.str();
+  bytes = buffer.str();
   if (bytes.size() < sizeof(kMagic) || bytes.compare(0, sizeof(kMagic), kMagic, sizeof(kMagic)))
     fail(path, "not a depot map (no DEPOTMAP header; write one with `depot slam run --save-map`)");
-
   MapFileInfo info;
   BinaryReader in(bytes, path, "map", sizeof(kMagic));
   info.version = in.take<uint32_t>();
@@ -145,24 +148,42 @@ MapFileInfo load_map_file(const std::string& path, const PinholeCamera& camera,
       crc32_of(bytes, bytes.size() - 4))
     fail(path, "corrupt or truncated map (checksum mismatch)");
   info.vocabulary = in.take<uint32_t>();
-  if (info.vocabulary != vocabulary_identity)
-    fail(path, "map built with another vocabulary (identity " + std::to_string(info.vocabulary) +
-                   ", this run's is " + std::to_string(vocabulary_identity) +
-                   "; run with the vocabulary that made it, --vocabulary F)");
-  info.camera = camera;
   info.camera.width = in.take<int32_t>();
   info.camera.height = in.take<int32_t>();
   for (double* v :
        {&info.camera.fx, &info.camera.fy, &info.camera.cx, &info.camera.cy, &info.camera.bf})
     *v = in.take<double>();
+  info.levels = in.take<int32_t>();
+  info.scale_factor = in.take<float>();
+  if (info.levels < 1 || info.levels > 32 || !(info.scale_factor > 1.0f))
+    fail(path, "corrupt map (ORB pyramid of " + std::to_string(info.levels) + " levels)");
+  info.header_bytes = in.at();
+  return info;
+}
+
+}  // namespace
+
+MapFileInfo read_map_info(const std::string& path) {
+  std::string bytes;
+  return read_header(path, bytes);
+}
+
+MapFileInfo load_map_file(const std::string& path, const PinholeCamera& camera,
+                          const ScaleLevels& levels, uint32_t vocabulary_identity, Map& map) {
+  if (map.n_keyframes() > 0) fail(path, "a map can only be loaded before any frame is tracked");
+  std::string bytes;
+  MapFileInfo info = read_header(path, bytes);
+  if (info.vocabulary != vocabulary_identity)
+    fail(path, "map built with another vocabulary (identity " + std::to_string(info.vocabulary) +
+                   ", this run's is " + std::to_string(vocabulary_identity) +
+                   "; run with the vocabulary that made it, --vocabulary F)");
   if (!same_camera(info.camera, camera))
     fail(path, "map made with another camera (" + describe(info.camera) + "; this dataset's is " +
                    describe(camera) + ")");
-  info.levels = in.take<int32_t>();
-  info.scale_factor = in.take<float>();
   if (info.levels != levels.n_levels || std::abs(info.scale_factor - levels.scale_factor) > 1e-6f)
     fail(path, "map made with another ORB pyramid (" + std::to_string(info.levels) +
                    " levels, scale " + std::to_string(info.scale_factor) + ")");
+  BinaryReader in(bytes, path, "map", info.header_bytes);
 
   struct KeyFrameRecord {
     KeyFrame* kf;
@@ -190,11 +211,12 @@ MapFileInfo load_map_file(const std::string& path, const PinholeCamera& camera,
       weight = in.take<int32_t>();
     }
     const uint32_t n = in.take<uint32_t>();
-    if (static_cast<uint64_t>(n) * (7 * 4 + 8 + kDescriptorBytes) > in.left())
+    if (static_cast<uint64_t>(n) * (7 * 4 + 3 + 8 + kDescriptorBytes) > in.left())
       fail(path, "truncated map (keyframe " + std::to_string(id) + " claims " + std::to_string(n) +
                      " keypoints)");
     std::vector<cv::KeyPoint> keypoints(n);
     std::vector<float> depth(n);
+    std::vector<cv::Vec3b> colours(n);
     r.points.resize(n);
     for (uint32_t i = 0; i < n; ++i) {
       cv::KeyPoint& kp = keypoints[i];
@@ -208,6 +230,7 @@ MapFileInfo load_map_file(const std::string& path, const PinholeCamera& camera,
         fail(path, "corrupt map (keyframe " + std::to_string(id) + ": octave " +
                        std::to_string(kp.octave) + ")");
       depth[i] = in.take<float>();
+      in.take_bytes(colours[i].val, 3);
       r.points[i] = in.take<int64_t>();
     }
     cv::Mat descriptors(static_cast<int>(n), kDescriptorBytes, CV_8U);
@@ -215,6 +238,7 @@ MapFileInfo load_map_file(const std::string& path, const PinholeCamera& camera,
       in.take_bytes(descriptors.ptr<uint8_t>(static_cast<int>(i)), kDescriptorBytes);
     Frame frame(frame_id, timestamp,
                 Features(std::move(keypoints), descriptors, std::move(depth), camera, &levels));
+    frame.features.colours = std::move(colours);
     frame.T_cw = T_cw;
     frame.has_pose = true;
     r.kf = map.create_keyframe(frame);

@@ -27,8 +27,13 @@ struct MapFileInfo {
   PinholeCamera camera;
   int levels = 0;
   float scale_factor = 0;
-  size_t keyframes = 0, points = 0;
+  size_t keyframes = 0, points = 0;  // after loading
+  size_t header_bytes = 0;
 };
+
+// The header of a map file (checked: format, version, checksum), without
+// loading it: what it was built with.
+MapFileInfo read_map_info(const std::string& path);
 
 // Writes the map's good keyframes and points through a staged file (a
 // failure leaves no file, and no half file ever replaces an old one). The

@@ -118,6 +118,7 @@ TrackResult System::track(const cv::Mat& bgr, const cv::Mat& depth, double times
   result.kept = static_cast<int>(keypoints.size());
   Frame frame(next_frame_id_++, timestamp,
               Features(std::move(keypoints), descriptors, depth, cam, &levels_));
+  frame.features.set_colours(bgr);
   result.state = tracker_.track(std::move(frame), &result.stats);
   if (!settings_.threaded_mapping) {
     mapper_.run_pending();

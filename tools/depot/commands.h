@@ -12,5 +12,7 @@ void register_perception_eval_commands(CLI::App* eval_group);
 void register_sweep_commands(CLI::App& app);
 // `depot slam vocabulary train|info`, added to the slam group.
 void register_vocabulary_commands(CLI::App* slam_group);
+// `depot slam map info|export`, added to the slam group.
+void register_map_commands(CLI::App* slam_group);
 
 }  // namespace depot::cli

@@ -231,6 +231,7 @@ void register_slam_commands(CLI::App& app) {
   add_rejection_options(run, args->options);
   run->callback([args, run] { run_slam(*args, *run); });
   register_vocabulary_commands(slam);
+  register_map_commands(slam);
 }
 
 }  // namespace depot::cli
