@@ -4,6 +4,9 @@
 // CRC-32 (zlib) that such files end with.
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include <zlib.h>
@@ -11,6 +14,19 @@
 #include "common/error.h"
 
 namespace depot {
+
+// The whole of a binary file; `what` names its kind in the errors ("no such
+// map file", "is a folder, not a map file", "cannot open the map file").
+inline std::string read_binary_file(const std::string& path, const std::string& what) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) fail(path, "no such " + what + " file");
+  if (std::filesystem::is_directory(path, ec)) fail(path, "is a folder, not a " + what + " file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot open the " + what + " file");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
 
 inline uint32_t crc32_of(const std::string& bytes, size_t n) {
   return static_cast<uint32_t>(

@@ -124,17 +124,9 @@ void save_map_file(const Map& map, const PinholeCamera& camera, const ScaleLevel
 
 namespace {
 
-// Reads the file and checks its header and checksum; `in` is left after the
-// header.
+// Reads the file into `bytes` and checks its header and checksum.
 MapFileInfo read_header(const std::string& path, std::string& bytes) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) fail(path, "no such map file");
-  if (std::filesystem::is_directory(path, ec)) fail(path, "is a folder, not a map file");
-  std::ifstream file(path, std::ios::binary);
-  if (!file) fail(path, "cannot open the map file");
-  std::ostringstream buffer;
-  buffer << file.rdbuf();
-  bytes = buffer.str();
+  bytes = read_binary_file(path, "map");
   if (bytes.size() < sizeof(kMagic) || bytes.compare(0, sizeof(kMagic), kMagic, sizeof(kMagic)))
     fail(path, "not a depot map (no DEPOTMAP header; write one with `depot slam run --save-map`)");
   MapFileInfo info;

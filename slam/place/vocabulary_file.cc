@@ -52,14 +52,7 @@ void save_vocabulary(const Vocabulary& vocabulary, const std::string& path) {
 }
 
 Vocabulary load_vocabulary(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) fail(path, "no such vocabulary file");
-  if (std::filesystem::is_directory(path, ec)) fail(path, "is a folder, not a vocabulary file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot open the vocabulary file");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  const std::string bytes = buffer.str();
+  const std::string bytes = read_binary_file(path, "vocabulary");
   if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
     fail(path,
          "not a depot vocabulary (no DEPOTVOC header; train one with `depot vocabulary train`)");
