@@ -153,28 +153,11 @@ MapFileInfo read_header(const std::string& path, std::string& bytes) {
   return info;
 }
 
-}  // namespace
-
-MapFileInfo read_map_info(const std::string& path) {
-  std::string bytes;
-  return read_header(path, bytes);
-}
-
-MapFileInfo load_map_file(const std::string& path, const PinholeCamera& camera,
-                          const ScaleLevels& levels, uint32_t vocabulary_identity, Map& map) {
+// Everything after the header, into `map`; `camera` and `levels` are the
+// keyframes' (checked against the file by the callers).
+void read_body(const std::string& bytes, const std::string& path, MapFileInfo& info,
+               const PinholeCamera& camera, const ScaleLevels& levels, Map& map) {
   if (map.n_keyframes() > 0) fail(path, "a map can only be loaded before any frame is tracked");
-  std::string bytes;
-  MapFileInfo info = read_header(path, bytes);
-  if (info.vocabulary != vocabulary_identity)
-    fail(path, "map built with another vocabulary (identity " + std::to_string(info.vocabulary) +
-                   ", this run's is " + std::to_string(vocabulary_identity) +
-                   "; run with the vocabulary that made it, --vocabulary F)");
-  if (!same_camera(info.camera, camera))
-    fail(path, "map made with another camera (" + describe(info.camera) + "; this dataset's is " +
-                   describe(camera) + ")");
-  if (info.levels != levels.n_levels || std::abs(info.scale_factor - levels.scale_factor) > 1e-6f)
-    fail(path, "map made with another ORB pyramid (" + std::to_string(info.levels) +
-                   " levels, scale " + std::to_string(info.scale_factor) + ")");
   BinaryReader in(bytes, path, "map", info.header_bytes);
 
   struct KeyFrameRecord {
@@ -291,6 +274,33 @@ MapFileInfo load_map_file(const std::string& path, const PinholeCamera& camera,
   }
   info.keyframes = map.n_keyframes();
   info.points = map.n_map_points();
+}
+
+}  // namespace
+
+MapFileInfo load_map_file(const std::string& path, const PinholeCamera& camera,
+                          const ScaleLevels& levels, uint32_t vocabulary_identity, Map& map) {
+  std::string bytes;
+  MapFileInfo info = read_header(path, bytes);
+  if (info.vocabulary != vocabulary_identity)
+    fail(path, "map built with another vocabulary (identity " + std::to_string(info.vocabulary) +
+                   ", this run's is " + std::to_string(vocabulary_identity) +
+                   "; run with the vocabulary that made it, --vocabulary F)");
+  if (!same_camera(info.camera, camera))
+    fail(path, "map made with another camera (" + describe(info.camera) + "; this dataset's is " +
+                   describe(camera) + ")");
+  if (info.levels != levels.n_levels || std::abs(info.scale_factor - levels.scale_factor) > 1e-6f)
+    fail(path, "map made with another ORB pyramid (" + std::to_string(info.levels) +
+                   " levels, scale " + std::to_string(info.scale_factor) + ")");
+  read_body(bytes, path, info, camera, levels, map);
+  return info;
+}
+
+MapFileInfo load_map_file_as_saved(const std::string& path, ScaleLevels& levels, Map& map) {
+  std::string bytes;
+  MapFileInfo info = read_header(path, bytes);
+  levels = ScaleLevels::make(info.levels, info.scale_factor);
+  read_body(bytes, path, info, info.camera, levels, map);
   return info;
 }
 

@@ -31,10 +31,6 @@ struct MapFileInfo {
   size_t header_bytes = 0;
 };
 
-// The header of a map file (checked: format, version, checksum), without
-// loading it: what it was built with.
-MapFileInfo read_map_info(const std::string& path);
-
 // Writes the map's good keyframes and points through a staged file (a
 // failure leaves no file, and no half file ever replaces an old one). The
 // caller holds map.mutex().
@@ -48,5 +44,10 @@ void save_map_file(const Map& map, const PinholeCamera& camera, const ScaleLevel
 // camera or ORB pyramid than the run's. The caller holds map.mutex().
 MapFileInfo load_map_file(const std::string& path, const PinholeCamera& camera,
                           const ScaleLevels& levels, uint32_t vocabulary_identity, Map& map);
+
+// Reads a saved map with what it was built with (its camera, its ORB
+// pyramid, which `levels` receives and the keyframes then point to; any
+// vocabulary), for tools that inspect or export it. Same errors otherwise.
+MapFileInfo load_map_file_as_saved(const std::string& path, ScaleLevels& levels, Map& map);
 
 }  // namespace depot::slam

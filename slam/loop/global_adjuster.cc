@@ -10,7 +10,7 @@
 
 namespace depot::slam {
 void apply_global_adjustment(Map& map, const GlobalBaResult& result) {
-  std::unordered_map<const KeyFrame*, Pose> before, after;
+  std::unordered_map<KeyFrame*, Pose> before, after;
   for (const auto& [k, T_cw] : result.keyframes) {
     if (k->bad) continue;
     before[k] = k->T_cw;
@@ -31,7 +31,7 @@ void apply_global_adjustment(Map& map, const GlobalBaResult& result) {
       after[child] = child->T_cw * before[parent].inverse() * after[parent];
     }
   }
-  for (const auto& [k, T_cw] : after) const_cast<KeyFrame*>(k)->T_cw = T_cw;
+  for (const auto& [k, T_cw] : after) k->T_cw = T_cw;
 
   std::unordered_set<const MapPoint*> solved;
   for (const auto& [mp, x] : result.points) {
@@ -72,14 +72,10 @@ void GlobalAdjuster::start() {
 
 void GlobalAdjuster::abort() {
   abort_ = true;
-  join();
+  wait();
 }
 
 void GlobalAdjuster::wait() {
-  join();
-}
-
-void GlobalAdjuster::join() {
   std::thread finished;
   {
     std::lock_guard<std::mutex> lock(mutex_);

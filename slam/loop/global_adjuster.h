@@ -57,7 +57,6 @@ class GlobalAdjuster {
 
  private:
   void run();
-  void join();
 
   Map& map_;
   LocalMapper& mapper_;

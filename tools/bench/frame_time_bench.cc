@@ -8,7 +8,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -21,28 +20,18 @@
 
 namespace fs = std::filesystem;
 
-namespace {
-
-std::vector<std::string> split_list(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ','))
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
   CLI::App app{"Per-frame tracking time on every shipped scenario and mode"};
-  std::string scenarios = "all";
-  std::string modes = "orb,orb+yolo,orb+lk,full";
+  std::vector<std::string> scenarios = {"all"};
+  std::vector<std::string> mode_list = {"orb", "orb+yolo", "orb+lk", "full"};
   int frames = 300;
   double rate_hz = 30;
   app.add_option("--scenarios", scenarios, "Comma-separated shipped scenarios, or all")
+      ->delimiter(',')
       ->capture_default_str();
-  app.add_option("--modes", modes, "Comma-separated modes")->capture_default_str();
+  app.add_option("--modes", mode_list, "Comma-separated modes")
+      ->delimiter(',')
+      ->capture_default_str();
   app.add_option("--frames", frames, "Frames of each scenario")
       ->check(CLI::Range(30, 100000))
       ->capture_default_str();
@@ -53,8 +42,7 @@ int main(int argc, char** argv) {
 
   const std::string folder = std::string(DEPOT_SOURCE_DIR) + "/scenarios";
   const std::vector<std::string> names =
-      scenarios == "all" ? depot::sim::list_scenarios(folder) : split_list(scenarios);
-  const std::vector<std::string> mode_list = split_list(modes);
+      scenarios == std::vector<std::string>{"all"} ? depot::sim::list_scenarios(folder) : scenarios;
   const fs::path scratch =
       fs::temp_directory_path() / ("depot_frame_time_bench_" + std::to_string(getpid()));
   int over_goal = 0, runs = 0;

@@ -23,11 +23,8 @@ struct LoadedMap {
 // The map as its file describes it (its own camera, pyramid and vocabulary).
 std::unique_ptr<LoadedMap> load(const std::string& path) {
   auto loaded = std::make_unique<LoadedMap>();
-  const slam::MapFileInfo header = slam::read_map_info(path);
-  loaded->levels = slam::ScaleLevels::make(header.levels, header.scale_factor);
   std::lock_guard<std::mutex> lock(loaded->map.mutex());
-  loaded->info =
-      slam::load_map_file(path, header.camera, loaded->levels, header.vocabulary, loaded->map);
+  loaded->info = slam::load_map_file_as_saved(path, loaded->levels, loaded->map);
   return loaded;
 }
 
