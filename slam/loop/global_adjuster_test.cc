@@ -59,8 +59,9 @@ TEST(GlobalAdjuster, KeyFramesAndPointsMadeMeanwhileFollowTheirParentAndReferenc
   // Pretend the last keyframe and the points it references were made after
   // the problem was collected.
   KeyFrame* late = s.kfs.back();
-  KeyFrame* parent = late->parent();
-  ASSERT_NE(parent, nullptr);
+  // A parent the adjustment moves (the first keyframe is held fixed).
+  KeyFrame* parent = s.kfs[3];
+  late->set_parent(parent);
   result.keyframes.erase(std::remove_if(result.keyframes.begin(), result.keyframes.end(),
                                         [&](const auto& r) { return r.first == late; }),
                          result.keyframes.end());
@@ -72,6 +73,7 @@ TEST(GlobalAdjuster, KeyFramesAndPointsMadeMeanwhileFollowTheirParentAndReferenc
   Pose parent_after = Pose::Identity();
   for (const auto& [kf, T] : result.keyframes)
     if (kf == parent) parent_after = T;
+  const Pose parent_before = parent->T_cw;
   const Pose late_relative = late->T_cw * parent->T_cw.inverse();
   const Eigen::Vector3d late_point_in_camera = late->T_cw * late_point->position;
   {
@@ -79,6 +81,7 @@ TEST(GlobalAdjuster, KeyFramesAndPointsMadeMeanwhileFollowTheirParentAndReferenc
     apply_global_adjustment(s.map, result);
   }
   EXPECT_TRUE(parent->T_cw.isApprox(parent_after, 1e-12));
+  EXPECT_FALSE(parent_after.isApprox(parent_before, 1e-6)) << "the parent must move";
   // Same pose relative to its parent, the point at the same place in its camera.
   EXPECT_TRUE((late->T_cw * parent->T_cw.inverse()).isApprox(late_relative, 1e-9));
   EXPECT_LT((late->T_cw * late_point->position - late_point_in_camera).norm(), 1e-9);
