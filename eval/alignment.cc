@@ -70,4 +70,24 @@ SimilarityTransform align_points(const std::vector<Eigen::Vector3d>& source,
   return out;
 }
 
+SimilarityTransform align_poses(const std::vector<Pose>& source, const std::vector<Pose>& target) {
+  if (source.size() != target.size())
+    fail("alignment", "pose lists differ in length (" + std::to_string(source.size()) + " vs " +
+                          std::to_string(target.size()) + ")");
+  if (source.empty()) fail("alignment", "no poses to align");
+  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+  for (size_t k = 0; k < source.size(); ++k)
+    sum += target[k].linear() * source[k].linear().transpose();
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(sum, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Vector3d sign(1.0, 1.0, 1.0);
+  if (svd.matrixU().determinant() * svd.matrixV().determinant() < 0.0) sign.z() = -1.0;
+  SimilarityTransform out;
+  out.rotation = svd.matrixU() * sign.asDiagonal() * svd.matrixV().transpose();
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  for (size_t k = 0; k < source.size(); ++k)
+    offset += target[k].translation() - out.rotation * source[k].translation();
+  out.translation = offset / static_cast<double>(source.size());
+  return out;
+}
+
 }  // namespace depot::eval

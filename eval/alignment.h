@@ -8,6 +8,8 @@
 
 #include <Eigen/Core>
 
+#include "common/pose.h"
+
 namespace depot::eval {
 
 enum class AlignmentKind {
@@ -34,5 +36,14 @@ struct SimilarityTransform {
 // depot::Error when a scale is asked for but the source points all coincide.
 SimilarityTransform align_points(const std::vector<Eigen::Vector3d>& source,
                                  const std::vector<Eigen::Vector3d>& target, AlignmentKind kind);
+
+// The rigid transform that maps the `source` poses (an estimate's world)
+// onto the `target` poses (the truth's), using their orientations as well as
+// their positions: the rotation is the chordal mean of R_target R_source^T
+// (the rotation nearest to their sum), the translation the mean of
+// t_target - R t_source. A trajectory that barely moves (a hand-held camera
+// swaying 30 cm) pins its world's orientation through its poses, not its
+// positions: what maps a map's points, metres away, into the truth's world.
+SimilarityTransform align_poses(const std::vector<Pose>& source, const std::vector<Pose>& target);
 
 }  // namespace depot::eval

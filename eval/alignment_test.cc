@@ -100,3 +100,33 @@ TEST(Alignment, RejectsBadInput) {
 
 }  // namespace
 }  // namespace depot::eval
+
+namespace depot::eval {
+namespace {
+
+// Poses of a camera that barely moves (a few cm), seen in a world turned by
+// kRotation: positions alone cannot pin the turn; orientations can.
+TEST(Alignment, PosesRecoverTheTurnOfAWorldFromATrajectoryThatBarelyMoves) {
+  Rng rng(7);
+  std::vector<Pose> source, target;
+  Pose world = Pose::Identity();
+  world.linear() = kRotation;
+  world.translation() = kTranslation;
+  for (int k = 0; k < 30; ++k) {
+    Pose p = Pose::Identity();
+    p.linear() =
+        Eigen::AngleAxisd(rng.uniform(-0.2, 0.2), Eigen::Vector3d::UnitY()).toRotationMatrix();
+    p.translation() = Eigen::Vector3d(rng.uniform(-0.02, 0.02), 0, rng.uniform(-0.02, 0.02));
+    source.push_back(p);
+    Pose noisy = world * p;
+    noisy.translation() += Eigen::Vector3d(rng.uniform(-0.005, 0.005), 0, 0);
+    target.push_back(noisy);
+  }
+  const SimilarityTransform a = align_poses(source, target);
+  EXPECT_LT(Eigen::AngleAxisd(a.rotation * kRotation.transpose()).angle(), 1e-9);
+  EXPECT_LT((a.translation - kTranslation).norm(), 0.003);
+  EXPECT_THROW(align_poses(source, {}), Error);
+}
+
+}  // namespace
+}  // namespace depot::eval

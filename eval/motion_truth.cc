@@ -102,17 +102,23 @@ MotionTruth::KeypointTruth MotionTruth::classify_keypoints(
   return out;
 }
 
-double MotionTruth::moving_fraction(double timestamp) const {
+cv::Mat MotionTruth::moving_mask(double timestamp) const {
   const std::string key = stamp_key(timestamp);
   const cv::Mat labels = load_labels(key);
+  cv::Mat mask = cv::Mat::zeros(labels.size(), CV_8U);
   auto moving = moving_ids_.find(key);
-  if (moving == moving_ids_.end()) return 0.0;
-  size_t count = 0;
+  if (moving == moving_ids_.end()) return mask;
   for (int y = 0; y < labels.rows; ++y) {
     const uint16_t* row = labels.ptr<uint16_t>(y);
-    for (int x = 0; x < labels.cols; ++x) count += moving->second.count(row[x]);
+    uint8_t* out = mask.ptr<uint8_t>(y);
+    for (int x = 0; x < labels.cols; ++x) out[x] = moving->second.count(row[x]) ? 255 : 0;
   }
-  return static_cast<double>(count) / labels.total();
+  return mask;
+}
+
+double MotionTruth::moving_fraction(double timestamp) const {
+  const cv::Mat mask = moving_mask(timestamp);
+  return static_cast<double>(cv::countNonZero(mask)) / mask.total();
 }
 
 std::vector<uint8_t> MotionTruth::on_moving_object(

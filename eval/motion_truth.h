@@ -38,6 +38,10 @@ class MotionTruth {
   KeypointTruth classify_keypoints(double timestamp, const std::vector<cv::KeyPoint>& keypoints,
                                    float scale_factor) const;
 
+  // The frame's pixels on objects flagged moving in it (CV_8U, 255 =
+  // moving), e.g. to leave them out of a dense map.
+  cv::Mat moving_mask(double timestamp) const;
+
   // Share of the frame's pixels on objects flagged moving (0..1): the
   // dynamic load a sweep reports alongside its knobs.
   double moving_fraction(double timestamp) const;

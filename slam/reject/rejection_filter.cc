@@ -154,6 +154,49 @@ void RejectionFilter::filter(const FrameImages& images, const std::vector<cv::Ke
   keep_ = keep;
 }
 
+cv::Mat RejectionFilter::moving_mask(cv::Size image) const {
+  if (mode_ == RejectionMode::kOrb || mode_ == RejectionMode::kOrbLk)
+    fail(rejection_mode_name(mode_), "rejects keypoints, not pixels: it has no moving mask");
+  cv::Mat mask = cv::Mat::zeros(image, CV_8U);
+  const cv::Rect frame(cv::Point(0, 0), image);
+  // A potentially dynamic object moves when the flow test rejected most of
+  // the Q keypoints on it.
+  auto flow_says_moving = [&](auto&& on_object) {
+    int rejected = 0, kept = 0;
+    for (size_t i = 0; i < keypoints_.size(); ++i) {
+      if (sets_[i] != PointSet::kQ || !on_object(keypoints_[i])) continue;
+      (keep_[i] ? kept : rejected)++;
+    }
+    return rejected > 0 && rejected >= kept;
+  };
+  auto paint_box = [&](const cv::Rect2f& box) { mask(cv::Rect(box) & frame).setTo(255); };
+  if (mode_ == RejectionMode::kMasked) {
+    for (size_t k = 0; k < objects_.size(); ++k) {
+      const Detection& d = objects_[k].detection;
+      const ObjectMask& object = masks_[k];
+      const bool dynamic = classes_.classify(d.class_name) == MotionClass::kDynamic;
+      if (!dynamic && !flow_says_moving([&](const cv::KeyPoint& kp) {
+            return object.valid() ? object.touches(kp, params_.scale_factor, params_.mask_reach)
+                                  : d.box.contains(kp.pt);
+          }))
+        continue;
+      if (object.valid())
+        mask(object.region).setTo(255, object.mask);
+      else
+        paint_box(d.box);
+    }
+    return mask;
+  }
+  for (const Detection& d : detections_) {
+    const MotionClass motion = classes_.classify(d.class_name);
+    if (motion == MotionClass::kDynamic ||
+        (motion == MotionClass::kPotentiallyDynamic && mode_ == RejectionMode::kFull &&
+         flow_says_moving([&](const cv::KeyPoint& kp) { return d.box.contains(kp.pt); })))
+      paint_box(d.box);
+  }
+  return mask;
+}
+
 void RejectionFilter::filter_full(const FrameImages& images,
                                   const std::vector<cv::KeyPoint>& keypoints,
                                   std::vector<uint8_t>& keep) {

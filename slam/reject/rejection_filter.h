@@ -125,6 +125,14 @@ class RejectionFilter : public KeypointFilter {
   const std::vector<TrackedBox>& last_objects() const { return objects_; }
   const std::vector<ObjectMask>& last_masks() const { return masks_; }
 
+  // The pixels the last frame's rejection took for moving (CV_8U of `image`
+  // size, 255 = moving), to leave out of a dense map: in orb+yolo and full
+  // every dynamic box, and a potentially dynamic box where the flow test
+  // rejected most of its keypoints (at least one); in masked the objects'
+  // masks by the same rule (a box whose object had no depth, whole). orb and
+  // orb+lk decide per keypoint, not per pixel: depot::Error.
+  cv::Mat moving_mask(cv::Size image) const;
+
  private:
   void filter_full(const FrameImages& images, const std::vector<cv::KeyPoint>& keypoints,
                    std::vector<uint8_t>& keep);

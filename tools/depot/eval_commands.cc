@@ -203,6 +203,7 @@ void register_eval_commands(CLI::App& app) {
       "eval", "Trajectory accuracy (ATE, RPE as TUM / evo), detectors and person segmenters");
   group->require_subcommand(1);
   register_perception_eval_commands(group);
+  register_cloud_eval_command(group);
 
   auto ate_args = std::make_shared<AteArgs>();
   CLI::App* ate = group->add_subcommand(

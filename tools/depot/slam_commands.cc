@@ -61,10 +61,18 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
   if (cmd.count("--segmenter") &&
       a.options.rejection.person_mask == slam::RejectionParams::PersonMask::kDepth)
     fail("--segmenter", "has no effect with --person-mask depth (choose segmentation or both)");
+  if (a.options.dense_map.empty())
+    for (const char* option : {"--dense-mask", "--dense-voxel", "--dense-max-depth",
+                               "--dense-min-views", "--dense-no-free-space"})
+      if (cmd.count(option)) fail(option, "has no effect without --dense-map");
   // Every output must be writable before a long run starts, not after it.
   const std::string states_path = slam::frame_states_path(a.output);
-  const std::string* outputs[] = {&a.output, &states_path, &a.keyframes, &a.options.stats_csv,
-                                  &a.options.keypoints_csv};
+  const std::string* outputs[] = {&a.output,
+                                  &states_path,
+                                  &a.keyframes,
+                                  &a.options.stats_csv,
+                                  &a.options.keypoints_csv,
+                                  &a.options.dense_map};
   for (const std::string* path : outputs)
     if (!path->empty()) check_output_file(*path);
   if (!a.options.overlays.empty())
@@ -105,6 +113,9 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
       "%s, %d global bundle adjustments, %d look-alike places refused; relocalisation median "
       "%.1f ms over %d lost frames\n",
       s.loops.empty() ? "" : ")", s.global_adjustments, s.loops_refused, s.lost_ms, s.lost);
+  if (!a.options.dense_map.empty())
+    std::printf("dense map: %zu points from %d keyframes (masks: %s), wrote %s\n", s.dense_points,
+                s.dense_keyframes, a.options.dense_mask.c_str(), a.options.dense_map.c_str());
   if (a.options.rate_hz > 0) {
     std::printf("input %g Hz, run-ahead %s: %zu frames handled after their turn\n",
                 a.options.rate_hz, a.options.run_ahead ? "on" : "off", s.late_frames);
@@ -218,6 +229,29 @@ void register_slam_commands(CLI::App& app) {
                 "Track against the loaded map without changing it: no keyframes, no points");
   run->add_option("--save-map", args->options.save_map,
                   "Write the map at the end (versioned binary with a checksum; staged)");
+  run->add_option("--dense-map", args->options.dense_map,
+                  "Write a dense static map at the end (PLY): the final keyframes' depth fused "
+                  "into voxels, moving pixels left out (--dense-mask)");
+  run->add_option("--dense-mask", args->options.dense_mask,
+                  "What leaves moving pixels out of the dense map: the rejection's masks "
+                  "(orb+yolo, full, masked), the simulated dataset's labels, or none")
+      ->check(CLI::IsMember({"rejection", "labels", "none"}))
+      ->capture_default_str();
+  run->add_option("--dense-voxel", args->options.dense.voxel_m, "Dense map voxel edge (m)")
+      ->check(CLI::Range(0.001, 1.0))
+      ->capture_default_str();
+  run->add_option("--dense-max-depth", args->options.dense.max_depth_m,
+                  "Depth beyond this (m) stays out of the dense map")
+      ->check(CLI::Range(0.1, 100.0))
+      ->capture_default_str();
+  run->add_option("--dense-min-views", args->options.dense.min_views,
+                  "Dense map voxels seen from fewer keyframes are left out")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  run->add_flag_callback(
+      "--dense-no-free-space", [args] { args->options.dense.free_space = false; },
+      "Keep dense map voxels that other keyframes see through (by default they are left out: "
+      "something was there and moved away)");
   run->add_flag("-q,--quiet", args->options.quiet, "No progress line");
   run->add_option("--rate", args->options.rate_hz,
                   "Input rate (Hz) of an emulated camera: frame i arrives at i / HZ s (0 = as "

@@ -26,6 +26,7 @@
 #include "slam/io/settings.h"
 #include "slam/io/tum_sequence.h"
 #include "slam/system/system.h"
+#include "tools/runner/dense_map.h"
 #include "tools/runner/rejection_overlay.h"
 
 namespace fs = std::filesystem;
@@ -249,6 +250,22 @@ RunSummary run_sequence(const RunOptions& o) {
   std::unique_ptr<eval::MotionTruth> truth;
   if (simulated) truth = std::make_unique<eval::MotionTruth>(o.dataset);
   summary.scored = truth != nullptr;
+  // The dense map's masks: checked before any work.
+  const DenseMask dense_mask = parse_dense_mask(o.dense_mask);
+  const bool dense = !o.dense_map.empty();
+  if (dense) {
+    check_output_file(o.dense_map);
+    slam::DenseCloud check_params(settings.camera, o.dense);
+    if (dense_mask == DenseMask::kLabels && !truth)
+      fail(o.dataset, "has no labels: --dense-mask labels needs a simulated dataset");
+    if (dense_mask == DenseMask::kRejection &&
+        (!filter || filter->mode() == slam::RejectionMode::kOrbLk))
+      fail("--dense-mask rejection",
+           "mode " + o.mode +
+               " leaves no moving mask (orb+yolo, full and masked do); give --dense-mask labels "
+               "or none");
+  }
+  std::map<double, cv::Mat> keyframe_masks;  // rejection masks of the frames made keyframes
 
   std::optional<StagedFile> stats, keypoint_rows;
   if (!o.stats_csv.empty()) {
@@ -324,6 +341,8 @@ RunSummary run_sequence(const RunOptions& o) {
     previous_state = r.state;
     summary.lost += r.state == slam::TrackingState::kLost;
     summary.relocalized += r.state == slam::TrackingState::kRelocalized;
+    if (dense && dense_mask == DenseMask::kRejection && r.stats.new_keyframe)
+      keyframe_masks[t] = filter->moving_mask(bgr.size());
     total.push_back(r.timing.total_ms);
     extract.push_back(r.timing.extract_ms);
     track.push_back(r.timing.track_ms);
@@ -383,6 +402,13 @@ RunSummary run_sequence(const RunOptions& o) {
   progress.finish();
   system.finish();
   if (!o.save_map.empty()) system.save_map(o.save_map);
+  if (dense) {
+    const DenseMapResult cloud =
+        write_dense_map(o.dense_map, sequence, settings.camera, system.keyframe_trajectory(),
+                        dense_mask, keyframe_masks, truth.get(), o.dense);
+    summary.dense_points = cloud.points;
+    summary.dense_keyframes = cloud.keyframes;
+  }
   summary.frames = n;
   summary.trajectory = system.trajectory();
   summary.frame_states = system.frame_states();

@@ -11,6 +11,7 @@
 #include "common/tum_io.h"
 #include "common/yaml_overrides.h"
 #include "eval/motion_truth.h"
+#include "slam/dense/dense_cloud.h"
 #include "slam/detect/sim_detector_config.h"
 #include "slam/loop/loop_closer.h"
 #include "slam/reject/rejection_filter.h"
@@ -28,6 +29,12 @@ struct RunOptions {
   std::string load_map;
   bool localise_only = false;
   std::string save_map;
+  // A dense static map (tools/runner/dense_map.h) written at the end as
+  // PLY ("" = none), moving pixels left out by `dense_mask` (rejection |
+  // labels | none).
+  std::string dense_map;
+  std::string dense_mask = "rejection";
+  slam::DenseCloudParams dense;
   std::string mode = "orb";  // orb | orb+yolo | orb+lk | full | masked
   std::string detector =
       "";  // sim | darknet | xl | fastestdet | yolov5 | file ("" = sim on simulated data)
@@ -89,6 +96,8 @@ struct RunSummary {
   // with run-ahead) had passed when the loop got to them: the tracker lagged.
   size_t late_frames = 0;
   double ba_ms_total = 0;
+  size_t dense_points = 0;                            // points of the dense map (with dense_map)
+  int dense_keyframes = 0;                            // keyframes fused into it
   std::vector<StampedPose> trajectory;                // the tracked frames only
   std::vector<slam::StampedFrameState> frame_states;  // every frame given
   std::vector<StampedPose> keyframes_trajectory;

@@ -1,0 +1,42 @@
+#pragma once
+// The dense static map of a run (`depot slam run --dense-map F.ply`): the
+// final keyframes' depth images, read again from the dataset, fused with
+// slam::DenseCloud at the keyframes' final poses (after loop closing and
+// global adjustment) with moving pixels left out, written as PLY.
+#include <map>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "common/tum_io.h"
+#include "eval/motion_truth.h"
+#include "slam/dense/dense_cloud.h"
+#include "slam/io/tum_sequence.h"
+
+namespace depot::runner {
+
+// What leaves moving pixels out of a dense map: the rejection's masks of
+// the keyframes (slam::RejectionFilter::moving_mask), the simulated
+// dataset's labels of moving objects, or nothing.
+enum class DenseMask { kRejection, kLabels, kNone };
+// rejection | labels | none; depot::Error("--dense-mask: ...") otherwise.
+DenseMask parse_dense_mask(const std::string& name);
+
+struct DenseMapResult {
+  size_t points = 0;
+  int keyframes = 0;  // keyframes fused (those of this run's frames)
+};
+
+// Keyframes whose frame is not in `sequence` (from a loaded map) are left
+// out. With kRejection `rejection_masks` holds each keyframe's mask by
+// timestamp (one missing: its keyframe is left out); with kLabels `truth`
+// gives them. Writes `path` through a staged file.
+DenseMapResult write_dense_map(const std::string& path, const slam::TumSequence& sequence,
+                               const slam::PinholeCamera& camera,
+                               const std::vector<StampedPose>& keyframes, DenseMask mask,
+                               const std::map<double, cv::Mat>& rejection_masks,
+                               const eval::MotionTruth* truth,
+                               const slam::DenseCloudParams& params);
+
+}  // namespace depot::runner
