@@ -128,9 +128,11 @@ CloudScore score_static_cloud(const CloudScoreOptions& o) {
       const Pose* T_wc = scene_poses.at(t);
       if (!T_wc) continue;
       const Pose* same = true_poses.at(t);
-      if (same && (same->translation() - T_wc->translation()).norm() > 1e-4)
-        fail(o.static_dataset, "is not a static render of " + o.dataset +
-                                   ": their camera paths differ at t = " + std::to_string(t));
+      if (!same || (same->translation() - T_wc->translation()).norm() > 1e-4)
+        fail(o.static_dataset,
+             "is not a static render of " + o.dataset + ": " +
+                 (same ? "their camera paths differ" : "the dataset has no frame") +
+                 " at t = " + std::to_string(t));
       scene.load(f, bgr, depth);
       surface.add_view(*T_wc, depth, bgr);
     }
