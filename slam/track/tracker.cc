@@ -98,7 +98,12 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
                            frame.T_cw * frame.reference->T_cw.inverse(), frame_state});
   else
     trajectory_.push_back({frame.timestamp, nullptr, Pose::Identity(), frame_state});
-  reset_wanted_ = !localisation_only_ && state_ == TrackingState::kLost && map_.n_keyframes() <= 5;
+  lost_in_a_row_ = state_ == TrackingState::kLost ? lost_in_a_row_ + 1 : 0;
+  const size_t keyframes = map_.n_keyframes();
+  reset_wanted_ = !localisation_only_ && state_ == TrackingState::kLost &&
+                  (keyframes <= static_cast<size_t>(params_.reset_keyframes) ||
+                   (keyframes < static_cast<size_t>(params_.young_map_keyframes) &&
+                    lost_in_a_row_ >= params_.young_map_lost_frames));
   if (ok) {
     if (frame.reference) last_T_cr_ = frame.T_cw * frame.reference->T_cw.inverse();
     last_ = std::move(frame);
@@ -111,6 +116,7 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
 
 void Tracker::relocalise_in_map() {
   reset_wanted_ = false;
+  lost_in_a_row_ = 0;
   if (map_.n_keyframes() == 0) return;  // nothing to relocalise against
   state_ = TrackingState::kLost;
   has_velocity_ = false;
@@ -126,6 +132,7 @@ void Tracker::follow_replaced_points_in_last_frame() {
 void Tracker::reset() {
   state_ = TrackingState::kNotInitialized;
   reset_wanted_ = false;
+  lost_in_a_row_ = 0;
   last_ = Frame();
   has_velocity_ = false;
   reference_ = nullptr;

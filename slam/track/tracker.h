@@ -35,6 +35,16 @@ struct TrackerParams {
   int local_map_min_inliers = 30;
   int relocalisation_min_inliers = 50;
   int relocalisation_candidates = 20;  // place-recognition candidates tried, best first
+  // A map lost while tiny is reset at once (ORB-SLAM2: <= 5 keyframes). One
+  // still young (fewer than young_map_keyframes) that stays lost for
+  // young_map_lost_frames frames in a row is reset too (ORB-SLAM3 resets a
+  // lost map below 10 keyframes): a few hundred points rarely give
+  // relocalisation its 50 inliers, and the camera would stay lost for the
+  // rest of the run (walking_xyz seed 2: lost on frame 7 with 6 keyframes,
+  // then 293 frames lost).
+  int reset_keyframes = 5;
+  int young_map_keyframes = 10;
+  int young_map_lost_frames = 30;  // ~1 s at 30 Hz
 };
 
 // How the frame's pose was first found (before local-map tracking).
@@ -78,8 +88,9 @@ class Tracker {
   TrackingState track(Frame frame, TrackingStats* stats = nullptr);
 
   TrackingState state() const { return state_; }
-  // True when the last frame was lost while the map was still tiny (<= 5
-  // keyframes): the system should reset and initialise again (ORB-SLAM2).
+  // True when the last frame was lost while the map was still tiny, or has
+  // been lost for a while in a young map (TrackerParams): the system should
+  // reset and initialise again.
   // Decided inside track() under the map lock (the mapper may cull
   // keyframes meanwhile), so it needs no lock.
   bool wants_reset() const { return reset_wanted_; }
@@ -121,6 +132,7 @@ class Tracker {
   KeyFrameDatabase* places_;
   TrackingState state_ = TrackingState::kNotInitialized;
   bool reset_wanted_ = false;
+  int lost_in_a_row_ = 0;  // frames lost since the last tracked one
   bool localisation_only_ = false;
   Frame last_;
   Pose last_T_cr_ = Pose::Identity();  // last frame relative to its reference keyframe

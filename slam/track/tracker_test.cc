@@ -83,7 +83,10 @@ class TrackerTest : public ::testing::Test {
   Map map_;
   KeyFrameDatabase places_{load_vocabulary_shared(default_vocabulary_path())};
   LocalMapper mapper_{map_, false, &places_};
-  Tracker tracker_{map_, mapper_, TrackerParams{}, &places_};
+  // The parameters the next fixture's tracker gets (a derived fixture sets
+  // them in SetUpTestSuite).
+  static inline TrackerParams params_for_next_;
+  Tracker tracker_{map_, mapper_, params_for_next_, &places_};
   long next_id_ = 0;
   double map_start_yaw_ = 0;  // yaw of the view the current map started on
 };
@@ -215,6 +218,56 @@ TEST_F(TrackerTest, TheLastFrameFollowsPointsThatMappingFused) {
       EXPECT_FALSE(mp->bad);
     }
   }
+}
+
+// A young map lost for a while is reset; one lost for less, or one grown
+// past young_map_keyframes, is not. The tiny-map rule is turned off here
+// (reset_keyframes 0) so the young-map rule is seen alone.
+class YoungMapTrackerTest : public TrackerTest {
+ public:
+  static void SetUpTestSuite() {
+    params_for_next_.reset_keyframes = 0;
+    params_for_next_.young_map_keyframes = 10;
+    params_for_next_.young_map_lost_frames = 3;
+  }
+  static void TearDownTestSuite() { params_for_next_ = TrackerParams(); }
+};
+
+TEST_F(YoungMapTrackerTest, AYoungMapLostForAWhileIsReset) {
+  track_view(0);
+  track_view(1);
+  ASSERT_LT(map_.n_keyframes(), 10u);
+  track_covered();
+  track_covered();
+  EXPECT_FALSE(tracker_.wants_reset()) << "lost for 2 frames only";
+  track_view(1);  // found again: the count starts over
+  ASSERT_EQ(tracker_.state(), TrackingState::kRelocalized);
+  track_covered();
+  track_covered();
+  EXPECT_FALSE(tracker_.wants_reset());
+  track_covered();
+  EXPECT_TRUE(tracker_.wants_reset())
+      << "lost 3 frames in a row in a map of " << map_.n_keyframes() << " keyframes";
+}
+
+// The same, with every map counted as grown (young_map_keyframes 1): lost
+// for 5 frames, no reset.
+class GrownMapTrackerTest : public TrackerTest {
+ public:
+  static void SetUpTestSuite() {
+    params_for_next_.reset_keyframes = 0;
+    params_for_next_.young_map_keyframes = 1;
+    params_for_next_.young_map_lost_frames = 3;
+  }
+  static void TearDownTestSuite() { params_for_next_ = TrackerParams(); }
+};
+
+TEST_F(GrownMapTrackerTest, AGrownMapIsNeverResetForBeingLost) {
+  track_view(0);
+  track_view(1);
+  for (int k = 0; k < 5; ++k) track_covered();
+  EXPECT_EQ(tracker_.state(), TrackingState::kLost);
+  EXPECT_FALSE(tracker_.wants_reset());
 }
 
 }  // namespace
