@@ -1,6 +1,7 @@
 // depot: simulation, SLAM and evaluation for dynamic farm-depot scenes.
 #include <cstdio>
 
+#include <glog/logging.h>
 #include <CLI/CLI.hpp>
 #include <opencv2/core/utils/logger.hpp>
 
@@ -14,6 +15,10 @@ int main(int argc, char** argv) {
   // Our errors name file and problem on one line; OpenCV's own warnings
   // (e.g. about an unreadable image) would come before it as noise.
   cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_ERROR);
+  // Likewise Ceres' (through glog): a solver step it retries, e.g. "Linear
+  // solver failure ... dense Cholesky" on a degenerate bundle, is not the
+  // user's problem.
+  FLAGS_minloglevel = google::GLOG_ERROR;
 
   CLI::App app{"depot: visual SLAM in dynamic farm-depot scenes, and the simulator that tests it"};
   app.require_subcommand(1);
