@@ -34,11 +34,14 @@ case "$kind" in
     #   SlamSystem.WalkingPeopleWithoutRejection.. (mapping thread: the
     #   patrol below) and RejectSystem.FullModeBeats.. (detection thread:
     #   the DetectionThread unit tests and CliSlam's full and masked runs).
+    # - CliSlam.DenseStaticMap..: three `full` runs and three cloud scorings
+    #   at 320 px with synchronous mapping (the detection thread is CliSlam's
+    #   other full runs'; the dense fusion runs on one thread).
     # The threaded runs that stay: SlamLoop.ThreadedMapping.. (mapping, loop
     # closing and global adjustment threads over the whole patrol), the
     # KeyFrameWorker, GlobalAdjuster and DetectionThread unit tests, CliSlam
     # (depot slam run, threaded by default, full and masked modes).
-    select=(-L slam -E '^(SimDetectorTest\.|SlamSystem\.(StaticDepot|RealHandHeld|WalkingPeople)|SlamLoop\.(RelocalisesAgainst|TheLoopIsClosed)|RejectSystem\.FullModeBeats)')
+    select=(-L slam -E '^(SimDetectorTest\.|SlamSystem\.(StaticDepot|RealHandHeld|WalkingPeople)|SlamLoop\.(RelocalisesAgainst|TheLoopIsClosed)|RejectSystem\.FullModeBeats|CliSlam\.DenseStaticMap)')
     ;;
   address)
     dir=build-asan
