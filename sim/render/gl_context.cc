@@ -1,6 +1,7 @@
 #include "sim/render/gl_context.h"
 
 #include <dlfcn.h>
+#include <link.h>
 
 #include <mutex>
 #include <vector>
@@ -122,6 +123,18 @@ class EglContext : public GlContext {
     ctx_ = create_context(display_, config, EGL_NO_CONTEXT, nullptr);
     if (ctx_ == EGL_NO_CONTEXT) fail("egl", "eglCreateContext failed");
     make_current();
+#if defined(__SANITIZE_ADDRESS__)
+    // Keep every library EGL loaded (Mesa's vendor library, its driver) to
+    // the end, so LeakSanitizer can name the frames of what they keep until
+    // exit (and tools/sanitizers/lsan.supp suppress them, as OSMesa's).
+    dl_iterate_phdr(
+        [](dl_phdr_info* info, size_t, void*) {
+          if (info->dlpi_name && info->dlpi_name[0])
+            dlopen(info->dlpi_name, RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+          return 0;
+        },
+        nullptr);
+#endif
   }
   ~EglContext() override {
     if (ctx_ != EGL_NO_CONTEXT) {
