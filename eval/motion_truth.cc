@@ -102,9 +102,10 @@ MotionTruth::KeypointTruth MotionTruth::classify_keypoints(
   return out;
 }
 
-cv::Mat MotionTruth::moving_mask(double timestamp) const {
+cv::Mat MotionTruth::moving_mask(double timestamp, cv::Mat* labels_out) const {
   const std::string key = stamp_key(timestamp);
   const cv::Mat labels = load_labels(key);
+  if (labels_out) *labels_out = labels;
   cv::Mat mask = cv::Mat::zeros(labels.size(), CV_8U);
   auto moving = moving_ids_.find(key);
   if (moving == moving_ids_.end()) return mask;

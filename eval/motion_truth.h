@@ -39,8 +39,9 @@ class MotionTruth {
                                    float scale_factor) const;
 
   // The frame's pixels on objects flagged moving in it (CV_8U, 255 =
-  // moving), e.g. to leave them out of a dense map.
-  cv::Mat moving_mask(double timestamp) const;
+  // moving), e.g. to leave them out of a dense map; `labels` (optional)
+  // receives the label image it was made from (one read for both).
+  cv::Mat moving_mask(double timestamp, cv::Mat* labels = nullptr) const;
 
   // Share of the frame's pixels on objects flagged moving (0..1): the
   // dynamic load a sweep reports alongside its knobs.

@@ -173,8 +173,8 @@ CloudScore score_static_cloud(const CloudScoreOptions& o) {
     const double t = sequence.entry(f).rgb_timestamp;
     const Pose* T_wc = true_poses.at(t);
     if (!T_wc) continue;
-    const cv::Mat labels = truth.label_image(t);
-    const cv::Mat moving = truth.moving_mask(t);
+    cv::Mat labels;
+    const cv::Mat moving = truth.moving_mask(t, &labels);
     ++score.frames_checked;
     if (cv::countNonZero(moving) == 0) continue;
     sequence.load(f, bgr, depth);
