@@ -266,6 +266,18 @@ ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box, const Obj
       }
     return all > 0 && on >= p.top_min_share * all;
   };
+  // The share of the search region outside the box that a region covers: an
+  // object the box holds covers little of it, a wall behind the box much.
+  auto spill = [&](const cv::Mat& grid) {
+    int on = 0, all = 0;
+    for (int gy = 0; gy < gh; ++gy)
+      for (int gx = 0; gx < gw; ++gx) {
+        if (gy >= in_y0 && gy < in_y1 && gx >= in_x0 && gx < in_x1) continue;
+        ++all;
+        on += grid.at<uint8_t>(gy, gx) != 0;
+      }
+    return all > 0 ? static_cast<float>(on) / all : 0.0f;
+  };
   float mode = known_depth > 0 ? known_depth : object_depth(depth, inner, p, off_plane);
   if (mode <= 0) return out;
   cv::Mat grid = grow(mode);
@@ -276,7 +288,7 @@ ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box, const Obj
     const float top_mode = object_depth(depth, top, p, off_plane);
     if (top_mode > 0 && std::fabs(top_mode - mode) > p.seed_band_m) {
       cv::Mat top_grid = grow(top_mode);
-      if (!top_grid.empty()) grid = top_grid, mode = top_mode;
+      if (!top_grid.empty() && spill(top_grid) <= p.max_spill) grid = top_grid, mode = top_mode;
     }
   }
   if (grid.empty()) return out;

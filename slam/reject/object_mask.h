@@ -9,10 +9,12 @@
 // search region's bottom third (RANSAC on its 3D points) is taken out first
 // when it is a support surface: large, receding in depth, and reaching the
 // region's bottom edge (a plane at one depth may be the object itself, e.g.
-// a torso). Optionally (top_min_share > 0) a nearest object that does not
-// reach the box's top is taken for an occluder standing before the object
-// (a monitor before a seated person), and the object is the one at the depth
-// of the box's top. Pixels of the box at other depths are the background
+// a torso). A nearest object that does not reach the box's top is taken for
+// an occluder standing before the object (a desk and a monitor before a
+// seated person) when the object at the depth of the box's top is one the
+// box holds: its region spills little past the box (a wall or shelf seen
+// above a misplaced box fills the search region around it). Pixels of the
+// box at other depths are the background
 // seen around the object; pixels without depth are on no object. Boxes from
 // a detector are jittered and scaled, so the search region is the box grown
 // on each side.
@@ -31,10 +33,13 @@ struct ObjectMaskParams {
   float peak_share = 0.5f;    // the nearest peak holding this share of the strongest one
   // Occluders: when the nearest object's region covers less than
   // top_min_share of the box's top (top_rows of its rows, top_columns of its
-  // middle columns), the object is the one at the depth of the box's top.
+  // middle columns), the object is the one at the depth of the box's top,
+  // if that one's region covers at most max_spill of the search region
+  // outside the box.
   float top_rows = 0.25f;
   float top_columns = 0.6f;
-  float top_min_share = 0.0f;     // 0 = no occluder test (the default; see the README)
+  float top_min_share = 0.0f;  // 0 = no occluder test (default until measured on walking)
+  float max_spill = 0.3f;
   float extent_m = 0.6f;          // the object reaches this far in depth from its mode
   float edge_step_m = 0.04f;      // a depth edge: neighbours further apart than
   float edge_step_per_m = 0.03f;  //   edge_step_m + edge_step_per_m * depth (m)

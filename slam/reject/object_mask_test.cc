@@ -97,5 +97,58 @@ TEST(ObjectMask, NoDepthNoMask) {
   EXPECT_FALSE(segment_object(scene_depth(), cv::Rect2f(400, 50, 80, 150)).valid());
 }
 
+// A seated person behind a desk and a monitor: wall at 4 m, the person
+// (head and torso, 60x150 px) at 1.9-1.975 m, before them a monitor (100x70
+// px at 1.2 m) over the person's middle and a desk edge (1.3-1.5 m) over the
+// bottom, both wider than the person's box.
+cv::Mat seated_depth() {
+  cv::Mat depth(240, 320, CV_32F, cv::Scalar(4.0f));
+  for (int y = 50; y < 200; ++y)
+    for (int x = 130; x < 190; ++x) depth.at<float>(y, x) = 1.9f + 0.0005f * (y - 50);
+  for (int y = 110; y < 180; ++y)
+    for (int x = 110; x < 210; ++x) depth.at<float>(y, x) = 1.2f;
+  for (int y = 180; y < 240; ++y)
+    for (int x = 40; x < 280; ++x) depth.at<float>(y, x) = 1.5f - 0.0033f * (y - 180);
+  return depth;
+}
+
+TEST(ObjectMask, AnOccluderBeforeTheObjectIsPassedOver) {
+  const cv::Mat depth = seated_depth();
+  const cv::Rect2f person(125, 48, 70, 180);
+  ObjectMaskParams on;
+  on.top_min_share = 0.1f;
+  const ObjectMask m = segment_object(depth, person, on);
+  ASSERT_TRUE(m.valid());
+  EXPECT_NEAR(m.depth, 1.95f, 0.1f);
+  EXPECT_TRUE(m.on_object(160, 60));    // head
+  EXPECT_TRUE(m.on_object(140, 100));   // shoulder
+  EXPECT_FALSE(m.on_object(160, 140));  // the monitor
+  EXPECT_FALSE(m.on_object(160, 220));  // the desk
+  EXPECT_FALSE(m.on_object(200, 60));   // wall
+  // Without the occluder test the monitor, nearest, is taken for the person.
+  ObjectMaskParams off;
+  off.top_min_share = 0;
+  EXPECT_NEAR(segment_object(depth, person, off).depth, 1.2f, 0.1f);
+}
+
+TEST(ObjectMask, AWallAboveAMisplacedBoxIsNoObject) {
+  // A person (1.5 m) whose box starts 60 px above the head: the box's top is
+  // wall, which also fills the search region around the box.
+  cv::Mat depth(240, 320, CV_32F, cv::Scalar(4.0f));
+  for (int y = 80; y < 240; ++y)
+    for (int x = 130; x < 190; ++x) depth.at<float>(y, x) = 1.5f;
+  ObjectMaskParams on;
+  on.top_min_share = 0.1f;
+  const ObjectMask m = segment_object(depth, cv::Rect2f(125, 20, 70, 220), on);
+  ASSERT_TRUE(m.valid());
+  EXPECT_NEAR(m.depth, 1.5f, 0.05f);
+  EXPECT_TRUE(m.on_object(160, 150));
+  EXPECT_FALSE(m.on_object(160, 50));
+  // With no limit on the spill, the wall is taken for the object.
+  ObjectMaskParams any_spill = on;
+  any_spill.max_spill = 1.0f;
+  EXPECT_NEAR(segment_object(depth, cv::Rect2f(125, 20, 70, 220), any_spill).depth, 4.0f, 0.05f);
+}
+
 }  // namespace
 }  // namespace depot::slam

@@ -21,14 +21,22 @@ std::string file_safe(const std::string& text) {
   return out;
 }
 
-bool parameter_affects_mode(ParameterTarget target, const std::string& mode) {
-  switch (target) {
+bool parameter_affects_mode(const ParameterKey& parameter, const std::string& mode) {
+  const slam::RejectionMode m = slam::parse_rejection_mode(mode);
+  switch (parameter.target) {
     case ParameterTarget::kScenario:
       return true;
     case ParameterTarget::kDetector:
-      return slam::mode_uses_detector(slam::parse_rejection_mode(mode));
-    case ParameterTarget::kRejection:
-      return slam::parse_rejection_mode(mode) == slam::RejectionMode::kFull;
+      return slam::mode_uses_detector(m);
+    case ParameterTarget::kRejection: {
+      // The object masks' own keys reach masked alone, the depth split of
+      // boxes full alone; the flow test's extensions reach both.
+      const std::string& k = parameter.key;
+      const bool masked_only =
+          k.rfind("mask.", 0) == 0 || k.rfind("tracking.", 0) == 0 || k == "person_mask";
+      if (k == "background_margin") return m == slam::RejectionMode::kFull;  // box splitting
+      return m == slam::RejectionMode::kMasked || (!masked_only && m == slam::RejectionMode::kFull);
+    }
   }
   return true;
 }
@@ -38,7 +46,7 @@ std::vector<std::pair<std::string, std::string>> run_levels(const SweepSpec& spe
                                                             const std::string& mode) {
   std::vector<std::pair<std::string, std::string>> out;
   for (size_t k = 0; k < spec.vary.size(); ++k)
-    if (parameter_affects_mode(resolve_parameter(spec.vary[k].name).target, mode))
+    if (parameter_affects_mode(resolve_parameter(spec.vary[k].name), mode))
       out.emplace_back(spec.vary[k].name, cell.levels[k]);
   return out;
 }

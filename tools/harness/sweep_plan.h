@@ -52,8 +52,10 @@ SweepPlan make_sweep_plan(const SweepSpec& spec);
 
 // Whether a parameter of this target can change a run in this mode: the
 // scenario's always; the detector's only where a detector runs (orb+yolo,
-// full); the rejection extensions' only in full.
-bool parameter_affects_mode(ParameterTarget target, const std::string& mode);
+// full, masked); the flow test's extensions in full and masked, the object
+// masks' (mask.*, tracking.*, person_mask) only in masked, the box depth
+// split (background_margin) only in full.
+bool parameter_affects_mode(const ParameterKey& parameter, const std::string& mode);
 
 // The varied parameters a run in this mode depends on, each with the cell's
 // level, in the spec's order: what names the run and what its record keeps.

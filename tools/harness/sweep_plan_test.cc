@@ -49,13 +49,24 @@ TEST(SweepPlan, ExpandsTheGridIntoCellsAndJobsWithUniqueIds) {
 }
 
 TEST(SweepPlan, ParametersMatterOnlyToTheModesTheyReach) {
-  EXPECT_TRUE(parameter_affects_mode(ParameterTarget::kScenario, "orb"));
-  EXPECT_FALSE(parameter_affects_mode(ParameterTarget::kDetector, "orb"));
-  EXPECT_FALSE(parameter_affects_mode(ParameterTarget::kDetector, "orb+lk"));
-  EXPECT_TRUE(parameter_affects_mode(ParameterTarget::kDetector, "orb+yolo"));
-  EXPECT_TRUE(parameter_affects_mode(ParameterTarget::kDetector, "full"));
-  EXPECT_FALSE(parameter_affects_mode(ParameterTarget::kRejection, "orb+yolo"));
-  EXPECT_TRUE(parameter_affects_mode(ParameterTarget::kRejection, "full"));
+  auto affects = [](const std::string& name, const std::string& mode) {
+    return parameter_affects_mode(resolve_parameter(name), mode);
+  };
+  EXPECT_TRUE(affects("load", "orb"));
+  EXPECT_FALSE(affects("miss_rate", "orb"));
+  EXPECT_FALSE(affects("miss_rate", "orb+lk"));
+  EXPECT_TRUE(affects("miss_rate", "orb+yolo"));
+  EXPECT_TRUE(affects("miss_rate", "full"));
+  EXPECT_TRUE(affects("miss_rate", "masked"));
+  EXPECT_FALSE(affects("rejection.ego_flow", "orb+yolo"));
+  EXPECT_TRUE(affects("rejection.ego_flow", "full"));
+  EXPECT_TRUE(affects("rejection.ego_flow", "masked"));
+  // The object masks' keys change masked runs only.
+  EXPECT_TRUE(affects("rejection.mask.top_min_share", "masked"));
+  EXPECT_FALSE(affects("rejection.mask.top_min_share", "full"));
+  EXPECT_TRUE(affects("rejection.tracking.max_missed", "masked"));
+  EXPECT_FALSE(affects("rejection.person_mask", "full"));
+  EXPECT_FALSE(affects("rejection.background_margin", "masked"));
 }
 
 TEST(SweepPlan, RefusesLevelsThatWouldShareAFolder) {

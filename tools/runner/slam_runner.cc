@@ -160,6 +160,7 @@ void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const s
                   {"mask.edge_step_per_m", &o.rejection.mask.edge_step_per_m, 0.0f, 1.0f},
                   {"mask.reach", &o.rejection.mask_reach, 0.0f, 3.0f},
                   {"mask.top_min_share", &o.rejection.mask.top_min_share, 0.0f, 1.0f},
+                  {"mask.max_spill", &o.rejection.mask.max_spill, 0.0f, 1.0f},
                   {"tracking.min_iou", &o.rejection.tracking.min_iou, 0.0f, 1.0f}};
       for (const Key& k : keys) {
         if (setting.key != k.name) continue;
