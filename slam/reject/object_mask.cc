@@ -286,7 +286,8 @@ ObjectMask segment_object(const cv::Mat& depth, const cv::Rect2f& box, const Obj
     // before the detected object (a monitor before a seated person). The
     // object is the one at the depth of the box's top.
     const float top_mode = object_depth(depth, top, p, off_plane);
-    if (top_mode > 0 && std::fabs(top_mode - mode) > p.seed_band_m) {
+    if (top_mode > 0 && top_mode - mode > p.seed_band_m &&
+        top_mode - mode <= p.max_occluder_gap_m) {
       cv::Mat top_grid = grow(top_mode);
       if (!top_grid.empty() && spill(top_grid) <= p.max_spill) grid = top_grid, mode = top_mode;
     }

@@ -13,7 +13,9 @@
 // an occluder standing before the object (a desk and a monitor before a
 // seated person) when the object at the depth of the box's top is one the
 // box holds: its region spills little past the box (a wall or shelf seen
-// above a misplaced box fills the search region around it). Pixels of the
+// above a misplaced box fills the search region around it), and it stands
+// at most a metre behind the occluder (what lies further back is what the
+// box shows above a walking person). Pixels of the
 // box at other depths are the background
 // seen around the object; pixels without depth are on no object. Boxes from
 // a detector are jittered and scaled, so the search region is the box grown
@@ -35,11 +37,14 @@ struct ObjectMaskParams {
   // top_min_share of the box's top (top_rows of its rows, top_columns of its
   // middle columns), the object is the one at the depth of the box's top,
   // if that one's region covers at most max_spill of the search region
-  // outside the box.
+  // outside the box and it stands at most max_occluder_gap_m behind the
+  // occluder (a seated person sits just behind the desk; the wall behind a
+  // walking person is metres away).
   float top_rows = 0.25f;
   float top_columns = 0.6f;
-  float top_min_share = 0.0f;  // 0 = no occluder test (default until measured on walking)
+  float top_min_share = 0.1f;  // 0 = no occluder test
   float max_spill = 0.3f;
+  float max_occluder_gap_m = 1.0f;
   float extent_m = 0.6f;          // the object reaches this far in depth from its mode
   float edge_step_m = 0.04f;      // a depth edge: neighbours further apart than
   float edge_step_per_m = 0.03f;  //   edge_step_m + edge_step_per_m * depth (m)

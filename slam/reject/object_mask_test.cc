@@ -144,10 +144,37 @@ TEST(ObjectMask, AWallAboveAMisplacedBoxIsNoObject) {
   EXPECT_NEAR(m.depth, 1.5f, 0.05f);
   EXPECT_TRUE(m.on_object(160, 150));
   EXPECT_FALSE(m.on_object(160, 50));
-  // With no limit on the spill, the wall is taken for the object.
+  // With no limit on the spill (nor on the gap), the wall is taken for the
+  // object.
   ObjectMaskParams any_spill = on;
   any_spill.max_spill = 1.0f;
+  any_spill.max_occluder_gap_m = 100.0f;
   EXPECT_NEAR(segment_object(depth, cv::Rect2f(125, 20, 70, 220), any_spill).depth, 4.0f, 0.05f);
+}
+
+TEST(ObjectMask, AnObjectFarBehindTheNearestIsNoOccludedObject) {
+  // A walking person (1.5 m) whose box starts 60 px above the head, where a
+  // crate stands 2 m further back (3.5 m) inside the box's top: it spills
+  // little past the box, but a seated person sits just behind what hides
+  // them, not metres behind.
+  cv::Mat depth(240, 320, CV_32F, cv::Scalar(6.0f));
+  for (int y = 20; y < 80; ++y)
+    for (int x = 120; x < 200; ++x) depth.at<float>(y, x) = 3.5f;
+  for (int y = 80; y < 240; ++y)
+    for (int x = 130; x < 190; ++x) depth.at<float>(y, x) = 1.5f;
+  const cv::Rect2f box(125, 20, 70, 220);
+  ObjectMaskParams on;
+  on.top_min_share = 0.1f;
+  on.max_occluder_gap_m = 1.0f;
+  const ObjectMask m = segment_object(depth, box, on);
+  ASSERT_TRUE(m.valid());
+  EXPECT_NEAR(m.depth, 1.5f, 0.05f);
+  EXPECT_TRUE(m.on_object(160, 150));
+  EXPECT_FALSE(m.on_object(160, 50));
+  // With no limit on the gap, the crate is taken for the object.
+  ObjectMaskParams any_gap = on;
+  any_gap.max_occluder_gap_m = 100.0f;
+  EXPECT_NEAR(segment_object(depth, box, any_gap).depth, 3.5f, 0.05f);
 }
 
 }  // namespace

@@ -161,6 +161,7 @@ void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const s
                   {"mask.reach", &o.rejection.mask_reach, 0.0f, 3.0f},
                   {"mask.top_min_share", &o.rejection.mask.top_min_share, 0.0f, 1.0f},
                   {"mask.max_spill", &o.rejection.mask.max_spill, 0.0f, 1.0f},
+                  {"mask.max_occluder_gap", &o.rejection.mask.max_occluder_gap_m, 0.0f, 100.0f},
                   {"tracking.min_iou", &o.rejection.tracking.min_iou, 0.0f, 1.0f}};
       for (const Key& k : keys) {
         if (setting.key != k.name) continue;

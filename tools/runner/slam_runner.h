@@ -71,6 +71,7 @@ struct RunOptions {
 // mask.edge_step (m), mask.edge_step_per_m, mask.stride (px), mask.reach,
 // mask.plane (bool: support-plane removal), mask.top_min_share (0 = no
 // occluder test), mask.max_spill (the occluded object's spill past its box),
+// mask.max_occluder_gap (m, how far behind its occluder the object may be),
 // tracking.max_missed (frames), tracking.min_iou. Throws
 // Error("<where>: ...") for an unknown key or a bad value.
 void apply_rejection_setting(RunOptions& options, const YamlOverride& setting,
