@@ -75,7 +75,9 @@ std::vector<TrackedBox> BoxTracker::update(const std::vector<Detection>& detecti
     Track& track = tracks_[t];
     if (t < old_tracks && !track_used[t]) {
       if (++track.missed > params_.max_missed) continue;
-      out.push_back({track.detection, track.id, track.missed, track.depth});
+      // A box seen once may be a false detection: kept to match, not carried.
+      if (track.detected >= params_.min_hits)
+        out.push_back({track.detection, track.id, track.missed, track.depth});
     }
     kept.push_back(track);
   }

@@ -59,6 +59,25 @@ TEST(BoxTracker, RedetectionContinuesTheTrack) {
   EXPECT_EQ(two[1].missed, 1);
 }
 
+TEST(BoxTracker, ABoxSeenOnceIsNotCarried) {
+  // A false detection lasts one frame; with min_hits 2 its box is not
+  // carried over the frames after it, but a person detected every other
+  // frame (the track is kept to match) is carried from the second hit on.
+  BoxTrackerParams params;
+  params.min_hits = 2;
+  BoxTracker tracker(params);
+  const int id = tracker.update({person_at(100)})[0].track_id;
+  EXPECT_TRUE(tracker.update({}).empty());  // seen once: not carried
+  EXPECT_EQ(tracker.tracks(), 1u);          // but kept to match
+  const auto again = tracker.update({person_at(116)});
+  ASSERT_EQ(again.size(), 1u);
+  EXPECT_EQ(again[0].track_id, id);
+  const auto carried = tracker.update({});  // seen twice: carried
+  ASSERT_EQ(carried.size(), 1u);
+  EXPECT_EQ(carried[0].track_id, id);
+  EXPECT_EQ(carried[0].missed, 1);
+}
+
 TEST(BoxTracker, CorrectionMovesACarriedBox) {
   BoxTracker tracker;
   const int id = tracker.update({person_at(100)})[0].track_id;

@@ -143,6 +143,10 @@ void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const s
       const int n = value.as<int>();
       if (n < 0 || n > 1000) fail(where, "tracking.max_missed must be in [0, 1000] frames");
       o.rejection.tracking.max_missed = n;
+    } else if (setting.key == "tracking.min_hits") {
+      const int n = value.as<int>();
+      if (n < 1 || n > 1000) fail(where, "tracking.min_hits must be in [1, 1000] detections");
+      o.rejection.tracking.min_hits = n;
     } else if (setting.key == "mask.plane") {
       o.rejection.mask.remove_plane = value.as<bool>();
     } else if (setting.key == "mask.stride") {
@@ -174,6 +178,7 @@ void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const s
       }
       std::string known =
           "background_margin, ego_flow, test_static, person_mask, tracking.max_missed, "
+          "tracking.min_hits, "
           "mask.plane, mask.stride";
       for (const Key& k : keys) known += std::string(", ") + k.name;
       fail(where, "unknown rejection setting '" + setting.key + "' (expected " + known + ")");

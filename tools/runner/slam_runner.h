@@ -72,7 +72,8 @@ struct RunOptions {
 // mask.plane (bool: support-plane removal), mask.top_min_share (0 = no
 // occluder test), mask.max_spill (the occluded object's spill past its box),
 // mask.max_occluder_gap (m, how far behind its occluder the object may be),
-// tracking.max_missed (frames), tracking.min_iou. Throws
+// tracking.max_missed (frames), tracking.min_hits (detections before a
+// missed box is carried), tracking.min_iou. Throws
 // Error("<where>: ...") for an unknown key or a bad value.
 void apply_rejection_setting(RunOptions& options, const YamlOverride& setting,
                              const std::string& where);
