@@ -71,6 +71,8 @@ const std::vector<BadInvocation> kBadInvocations = {
     {"eval ate gt.txt est.txt --baseline-rmse -2", "eval ate", "--baseline-rmse"},
     {"eval rpe gt.txt est.txt --delta-unit m", "eval rpe", "--delta-unit"},
     {"eval rpe gt.txt est.txt --delta nan", "eval rpe", "--delta"},
+    {"eval rejection data", "eval rejection", "KEYPOINTS"},
+    {"eval rejection data k.csv --scale-factor 3", "eval rejection", "--scale-factor"},
     {"eval calibrate", "eval calibrate", "DATASET"},
     {"eval calibrate data", "eval calibrate", "--output"},
     {"eval calibrate data -o s.yaml --every 0", "eval calibrate", "--every"},

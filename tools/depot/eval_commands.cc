@@ -200,10 +200,12 @@ void run_rpe(const RpeArgs& args) {
 
 void register_eval_commands(CLI::App& app) {
   CLI::App* group = app.add_subcommand(
-      "eval", "Trajectory accuracy (ATE, RPE as TUM / evo), detectors and person segmenters");
+      "eval",
+      "Trajectory accuracy (ATE, RPE as TUM / evo), rejection, detectors and person segmenters");
   group->require_subcommand(1);
   register_perception_eval_commands(group);
   register_cloud_eval_command(group);
+  register_rejection_eval_command(group);
 
   auto ate_args = std::make_shared<AteArgs>();
   CLI::App* ate = group->add_subcommand(

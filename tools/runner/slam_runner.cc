@@ -18,6 +18,8 @@
 #include "common/staged_directory.h"
 #include "common/staged_file.h"
 #include "common/yaml_overrides.h"
+#include "eval/keypoint_file.h"
+#include "eval/keypoint_score.h"
 #include "slam/detect/detection_file.h"
 #include "slam/detect/detector_factory.h"
 #include "slam/detect/sim_detector.h"
@@ -78,34 +80,31 @@ std::unique_ptr<slam::Detector> make_detector(const RunOptions& o, const std::st
 
 namespace {
 
-const char* const kKeypointHeader =
-    "frame,timestamp,x,y,octave,set,kept,depth_m,on_moving,boundary,instance\n";
-
 char set_letter(slam::PointSet set) {
   return set == slam::PointSet::kZ ? 'Z' : set == slam::PointSet::kQ ? 'Q' : 'P';
 }
 
-// One row per keypoint of the frame: where it is, its set and decision, its
-// depth, and (simulated data) whether it lies on a moving object or on its
-// boundary (MotionTruth's rule) and the instance id there (objects.json);
-// empty truth columns on real data.
+// One row per keypoint of the frame (eval/keypoint_file.h): where it is, its
+// set and decision, its depth, and (simulated data) whether it lies on a
+// moving object or on its boundary (MotionTruth's rule) and the instance id
+// there (objects.json); empty truth columns on real data.
 void write_keypoint_rows(std::ostream& out, size_t frame, double timestamp,
                          const slam::RejectionFilter& filter, const cv::Mat& depth,
                          const eval::MotionTruth::KeypointTruth* truth) {
   const auto& kps = filter.last_keypoints();
   const std::vector<float> depths = slam::keypoint_depths(depth, kps);
-  char line[160];
+  eval::WrittenKeypoint row;
+  row.frame = frame;
+  row.timestamp = timestamp;
   for (size_t k = 0; k < kps.size(); ++k) {
-    std::snprintf(line, sizeof(line), "%zu,%.6f,%.2f,%.2f,%d,%c,%d,%.4f,", frame, timestamp,
-                  kps[k].pt.x, kps[k].pt.y, kps[k].octave, set_letter(filter.last_sets()[k]),
-                  static_cast<int>(filter.last_keep()[k]), depths[k]);
-    out << line;
+    row.keypoint = kps[k];
+    row.set = set_letter(filter.last_sets()[k]);
+    row.kept = filter.last_keep()[k] != 0;
+    row.depth_m = depths[k];
     if (truth)
-      out << static_cast<int>(truth->on_moving[k]) << ',' << static_cast<int>(truth->boundary[k])
-          << ',' << truth->instance[k];
-    else
-      out << ",,";
-    out << '\n';
+      row.truth = eval::WrittenKeypoint::Truth{truth->on_moving[k] != 0, truth->boundary[k] != 0,
+                                               truth->instance[k]};
+    eval::write_keypoint_row(out, row);
   }
 }
 
@@ -300,7 +299,7 @@ RunSummary run_sequence(const RunOptions& o) {
       fail(o.keypoints_csv,
            "per-keypoint rows need a rejection mode (orb+yolo, orb+lk, full or masked)");
     keypoint_rows.emplace(o.keypoints_csv);
-    keypoint_rows->stream() << kKeypointHeader;
+    eval::write_keypoint_header(keypoint_rows->stream());
   }
 
   slam::System system(settings, filter);
@@ -367,9 +366,9 @@ RunSummary run_sequence(const RunOptions& o) {
     long fp_z = 0, fp_q = 0;
     eval::MotionTruth::KeypointTruth labels;
     if (truth && filter) {
-      labels = truth->classify_keypoints(t, filter->last_keypoints(), settings.orb.scale_factor);
+      frame_score = eval::score_frame(*truth, t, filter->last_keypoints(), filter->last_keep(),
+                                      settings.orb.scale_factor, &labels);
       const std::vector<uint8_t>& moving = labels.on_moving;
-      frame_score.add(filter->last_keep(), moving, labels.boundary);
       // Where the false rejections come from: Z (boxes) or Q (flow test).
       for (size_t k = 0; k < moving.size(); ++k) {
         if (filter->last_keep()[k] || moving[k]) continue;

@@ -1,0 +1,41 @@
+#include "eval/keypoint_score.h"
+
+#include <map>
+
+namespace depot::eval {
+
+RejectionScore score_frame(const MotionTruth& truth, double timestamp,
+                           const std::vector<cv::KeyPoint>& keypoints,
+                           const std::vector<uint8_t>& keep, float scale_factor,
+                           MotionTruth::KeypointTruth* labels) {
+  MotionTruth::KeypointTruth classified =
+      truth.classify_keypoints(timestamp, keypoints, scale_factor);
+  RejectionScore score;
+  score.add(keep, classified.on_moving, classified.boundary);
+  if (labels) *labels = std::move(classified);
+  return score;
+}
+
+KeypointFileScore score_keypoint_file(const MotionTruth& truth, const KeypointFile& file,
+                                      float scale_factor) {
+  struct Frame {
+    std::vector<cv::KeyPoint> keypoints;
+    std::vector<uint8_t> keep;
+  };
+  std::map<double, Frame> frames;
+  for (const KeypointRow& row : file.rows) {
+    Frame& f = frames[row.timestamp];
+    cv::KeyPoint k(row.x, row.y, 7.0f, -1.0f, static_cast<float>(row.response), row.octave);
+    f.keypoints.push_back(k);
+    f.keep.push_back(row.kept ? 1 : 0);
+  }
+  KeypointFileScore out;
+  for (const auto& [t, f] : frames) {
+    out.score.add(score_frame(truth, t, f.keypoints, f.keep, scale_factor));
+    out.keypoints += f.keypoints.size();
+  }
+  out.frames = frames.size();
+  return out;
+}
+
+}  // namespace depot::eval
