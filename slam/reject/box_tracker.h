@@ -17,7 +17,7 @@ namespace depot::slam {
 
 struct BoxTrackerParams {
   int max_missed = 5;               // frames a track lives without a detection
-  int min_hits = 1;                 // detections before a missed track's box is carried
+  int min_hits = 2;                 // detections before a missed track's box is carried
   float min_iou = 0.2f;             // a detection continues a track from this overlap
   float velocity_smoothing = 0.5f;  // weight of the newest box motion in the velocity
 };

@@ -81,6 +81,7 @@ TEST(BoxTracker, ABoxSeenOnceIsNotCarried) {
 TEST(BoxTracker, CorrectionMovesACarriedBox) {
   BoxTracker tracker;
   const int id = tracker.update({person_at(100)})[0].track_id;
+  tracker.update({person_at(100)});  // seen twice, standing still
   tracker.update({});
   tracker.correct(id, cv::Rect2f(90, 50, 60, 150));
   const auto boxes = tracker.update({});
@@ -93,6 +94,7 @@ TEST(BoxTracker, ACarriedBoxKeepsItsObjectsDepth) {
   const auto first = tracker.update({person_at(100)});
   EXPECT_EQ(first[0].depth, 0.0f);  // nothing recorded yet
   tracker.set_depth(first[0].track_id, 2.4f);
+  tracker.update({person_at(100)});  // seen twice: carried when missed
   const auto carried = tracker.update({});
   ASSERT_EQ(carried.size(), 1u);
   EXPECT_EQ(carried[0].missed, 1);

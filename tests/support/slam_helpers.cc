@@ -2,6 +2,7 @@
 
 #include "common/tum_io.h"
 #include "eval/ate.h"
+#include "eval/keypoint_score.h"
 #include "eval/matched_trajectories.h"
 #include "slam/detect/sim_detector.h"
 #include "slam/io/settings.h"
@@ -33,9 +34,8 @@ SlamOutcome run_slam_mode(const std::string& dataset, slam::RejectionMode mode, 
     auto tr = system.track(bgr, depth, t);
     r.lost += tr.state == slam::TrackingState::kLost;
     if (mode != slam::RejectionMode::kOrb) {
-      const auto labels =
-          truth.classify_keypoints(t, filter.last_keypoints(), settings.orb.scale_factor);
-      r.score.add(filter.last_keep(), labels.on_moving, labels.boundary);
+      r.score.add(eval::score_frame(truth, t, filter.last_keypoints(), filter.last_keep(),
+                                    settings.orb.scale_factor));
     }
   }
   system.finish();
