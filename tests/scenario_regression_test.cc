@@ -62,9 +62,18 @@ TEST_P(ScenarioRegression, MeetsItsBounds) {
         GetParam().c_str(), masked.ate_rmse, masked.score.precision_without_boundary(),
         masked.score.precision(), masked.score.recall(), masked.lost, 100 * masked.tracked_share());
     EXPECT_LT(masked.ate_rmse, m["ate_max"].as<double>()) << "masked ATE RMSE";
-    EXPECT_GT(masked.score.precision_without_boundary(), m["precision_min"].as<double>())
-        << "masked precision";
-    EXPECT_GT(masked.score.recall(), m["recall_min"].as<double>()) << "masked recall";
+    if (m["precision_min"]) {
+      EXPECT_GT(masked.score.precision_without_boundary(), m["precision_min"].as<double>())
+          << "masked precision";
+    }
+    if (m["recall_min"]) {
+      EXPECT_GT(masked.score.recall(), m["recall_min"].as<double>()) << "masked recall";
+    }
+    // Seated people seen still keep their points (the still-object test):
+    // recall stays low where the truth marks a whole fidgeting sitter moving.
+    if (m["recall_max"]) {
+      EXPECT_LT(masked.score.recall(), m["recall_max"].as<double>()) << "masked recall";
+    }
     EXPECT_LE(masked.lost, m["max_lost"].as<int>()) << "masked lost frames";
     EXPECT_EQ(masked.trajectory_size, masked.tracked);
     EXPECT_GE(masked.tracked_share(), m["tracked_share_min"].as<double>())

@@ -94,6 +94,7 @@ void RejectionFilter::filter(const FrameImages& images, const std::vector<cv::Ke
   stats_.detections = static_cast<int>(detections_.size());
   keep.assign(keypoints.size(), 1);
   sets_.assign(keypoints.size(), PointSet::kP);
+  dynamic_object_.clear();
 
   if (mode_uses_flow(mode_)) {
     const auto tf = std::chrono::steady_clock::now();
@@ -247,6 +248,7 @@ std::vector<PointSet> RejectionFilter::masked_sets(const FrameImages& images,
                               ? PointSet::kZ
                               : PointSet::kQ);
   std::vector<PointSet> sets(keypoints.size(), PointSet::kP);
+  std::vector<int> dynamic_object(keypoints.size(), -1);
   for (size_t i = 0; i < keypoints.size(); ++i) {
     const cv::KeyPoint& kp = keypoints[i];
     for (size_t k = 0; k < objects_.size() && sets[i] != PointSet::kZ; ++k) {
@@ -256,8 +258,18 @@ std::vector<PointSet> RejectionFilter::masked_sets(const FrameImages& images,
       const bool on_object = mask.valid()
                                  ? mask.touches(kp, params_.scale_factor, params_.mask_reach)
                                  : objects_[k].detection.box.contains(kp.pt);
-      if (on_object) sets[i] = std::max(sets[i], object_set);
+      if (!on_object) continue;
+      sets[i] = std::max(sets[i], object_set);
+      if (object_set == PointSet::kZ) dynamic_object[i] = static_cast<int>(k);
     }
+  }
+  // The still-object test needs a previous frame's flow; without one a
+  // dynamic object's keypoints stay in Z.
+  dynamic_object_.clear();
+  if (params_.still_object_max_moving > 0 && flow_.has_previous()) {
+    for (size_t i = 0; i < keypoints.size(); ++i)
+      if (dynamic_object[i] >= 0) sets[i] = PointSet::kQ;
+    dynamic_object_ = std::move(dynamic_object);
   }
   stats_.mask_ms = ms_since(t0);
   return sets;
@@ -349,11 +361,46 @@ void RejectionFilter::decide_sets(const FrameImages& images,
     if (guided[j]) return guided_moves[j] != 0;
     return ok[j] && flow_is_dynamic(flow[j], test);
   };
+  // masked: a dynamic object moves unless few of its tracked keypoints do,
+  // by the test at a still camera's threshold (the floor): the paper's
+  // threshold grows with the camera's speed, and under fast rotation a
+  // walking person's flow would pass it.
+  auto moves_at_floor = [&](size_t j) {
+    if (guided[j]) return guided_moves[j] != 0;
+    const cv::Point2f d = flow[j] - test.mean;
+    return ok[j] && d.dot(d) > params_.test.z_floor * params_.test.z_floor;
+  };
+  std::vector<uint8_t> object_moves;
+  if (!dynamic_object_.empty()) {
+    std::vector<int> tracked(objects_.size(), 0), moving(objects_.size(), 0);
+    for (size_t k = 0; k < q_index.size(); ++k) {
+      const int object = dynamic_object_[q_index[k]];
+      const size_t j = n_ref + k;
+      if (object < 0 || !(guided[j] || ok[j])) continue;
+      tracked[object]++;
+      moving[object] += moves_at_floor(j);
+    }
+    object_moves.assign(objects_.size(), 1);
+    for (size_t o = 0; o < objects_.size(); ++o) {
+      object_moves[o] = tracked[o] < params_.still_object_min_points ||
+                        moving[o] >= params_.still_object_max_moving * tracked[o];
+      stats_.still_objects += !object_moves[o];  // tracked points: a dynamic object
+    }
+  }
   for (size_t k = 0; k < q_index.size(); ++k) {
+    const size_t i = q_index[k];
+    const int object = dynamic_object_.empty() ? -1 : dynamic_object_[i];
+    if (object >= 0 && object_moves[object]) {
+      keep[i] = 0;  // on a moving dynamic object: Z after all
+      sets_[i] = PointSet::kZ;
+      stats_.q--;
+      stats_.z++;
+      continue;
+    }
     const size_t j = n_ref + k;
     // A Q point passes when it tracked and moves with the static scene.
     const bool passes = (guided[j] || ok[j]) && !moves(j);
-    keep[q_index[k]] = passes;
+    keep[i] = passes;
     stats_.q_to_p += passes;
   }
   if (test_p)

@@ -15,7 +15,10 @@
 //            a potentially dynamic one's, to Q; every other keypoint (the
 //            background seen in the box, pixels without depth) to P. A box
 //            whose object has no depth at all falls back to the paper's rule
-//            (Z or Q whole). Q then as in full.
+//            (Z or Q whole). Q then as in full. A dynamic object seen still
+//            (a seated person: few of its keypoints fail the flow test) has
+//            its keypoints decided one by one like Q's; a moving one loses
+//            them all (still_object_max_moving).
 #include <memory>
 #include <string>
 #include <vector>
@@ -72,6 +75,17 @@ struct RejectionParams {
   // mask and the depth mask together (a pixel on either is on the person).
   enum class PersonMask { kDepth, kSegmentation, kBoth };
   PersonMask person_mask = PersonMask::kDepth;
+  // masked: a dynamic object (a-priori class) whose tracked keypoints fail
+  // the flow test in less than this share, at a still camera's threshold
+  // (test.z_floor, or the camera-motion test's), is still this frame: each of its
+  // keypoints is kept when its own flow agrees with the static scene, as a
+  // Q point. Otherwise (or with fewer than still_object_min_points tracked,
+  // or no previous frame) all of them go to Z. A seated person's torso then
+  // keeps constraining the pose while its moving hands are rejected; a
+  // walking person fails the test in ~90 % of its points. 0 = the a-priori
+  // rule alone (every keypoint on a dynamic object goes to Z).
+  float still_object_max_moving = 0.3f;
+  int still_object_min_points = 5;
 };
 // depth | segmentation | both; Error("<where>: ...") otherwise.
 RejectionParams::PersonMask parse_person_mask(const std::string& name,
@@ -94,6 +108,7 @@ struct RejectionStats {
   int masks = 0;          // masked: objects segmented from depth
   double mask_ms = 0;     // masked: box tracking and depth segmentation
   double segment_ms = 0;  // masked: the person segmenter (in the detection thread)
+  int still_objects = 0;  // masked: dynamic objects seen still (keypoints decided by flow)
 };
 
 class RejectionFilter : public KeypointFilter {
@@ -157,6 +172,9 @@ class RejectionFilter : public KeypointFilter {
   std::vector<cv::KeyPoint> keypoints_;
   std::vector<uint8_t> keep_;
   std::vector<PointSet> sets_;
+  // masked, with the still-object test: the dynamic object (index into
+  // objects_) each keypoint lies on, -1 for none; empty when not tested.
+  std::vector<int> dynamic_object_;
 };
 
 }  // namespace depot::slam

@@ -146,6 +146,10 @@ void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const s
       const int n = value.as<int>();
       if (n < 1 || n > 1000) fail(where, "tracking.min_hits must be in [1, 1000] detections");
       o.rejection.tracking.min_hits = n;
+    } else if (setting.key == "still.min_points") {
+      const int n = value.as<int>();
+      if (n < 1 || n > 10000) fail(where, "still.min_points must be in [1, 10000] keypoints");
+      o.rejection.still_object_min_points = n;
     } else if (setting.key == "mask.plane") {
       o.rejection.mask.remove_plane = value.as<bool>();
     } else if (setting.key == "mask.stride") {
@@ -165,7 +169,8 @@ void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const s
                   {"mask.top_min_share", &o.rejection.mask.top_min_share, 0.0f, 1.0f},
                   {"mask.max_spill", &o.rejection.mask.max_spill, 0.0f, 1.0f},
                   {"mask.max_occluder_gap", &o.rejection.mask.max_occluder_gap_m, 0.0f, 100.0f},
-                  {"tracking.min_iou", &o.rejection.tracking.min_iou, 0.0f, 1.0f}};
+                  {"tracking.min_iou", &o.rejection.tracking.min_iou, 0.0f, 1.0f},
+                  {"still.max_moving", &o.rejection.still_object_max_moving, 0.0f, 1.0f}};
       for (const Key& k : keys) {
         if (setting.key != k.name) continue;
         const float v = value.as<float>();
@@ -177,7 +182,7 @@ void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const s
       }
       std::string known =
           "background_margin, ego_flow, test_static, person_mask, tracking.max_missed, "
-          "tracking.min_hits, "
+          "tracking.min_hits, still.min_points, "
           "mask.plane, mask.stride";
       for (const Key& k : keys) known += std::string(", ") + k.name;
       fail(where, "unknown rejection setting '" + setting.key + "' (expected " + known + ")");

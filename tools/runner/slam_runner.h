@@ -73,7 +73,9 @@ struct RunOptions {
 // occluder test), mask.max_spill (the occluded object's spill past its box),
 // mask.max_occluder_gap (m, how far behind its occluder the object may be),
 // tracking.max_missed (frames), tracking.min_hits (detections before a
-// missed box is carried), tracking.min_iou. Throws
+// missed box is carried), tracking.min_iou, still.max_moving (the share of
+// a dynamic object's keypoints failing the flow test below which it is
+// still; 0 = off), still.min_points. Throws
 // Error("<where>: ...") for an unknown key or a bad value.
 void apply_rejection_setting(RunOptions& options, const YamlOverride& setting,
                              const std::string& where);
