@@ -19,7 +19,8 @@ struct Row {
   std::vector<std::string> fields;
 };
 
-std::vector<Row> read_rows(const std::string& path) {
+// `commas`: fields are separated by commas as well (CSV).
+std::vector<Row> read_rows(const std::string& path, bool commas = false) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) fail(path, "is a folder, not a TUM text file");
   std::ifstream in(path);
@@ -36,6 +37,9 @@ std::vector<Row> read_rows(const std::string& path) {
     if (rows.empty() && text.compare(first, 9, "timestamp") == 0) continue;
     Row row;
     row.line = line_no;
+    if (commas)
+      for (char& c : text)
+        if (c == ',') c = ' ';
     std::istringstream fields(text);
     std::string f;
     while (fields >> f) row.fields.push_back(f);
@@ -93,6 +97,46 @@ std::vector<StampedPose> read_tum_trajectory(const std::string& path) {
                                  ")");
     }
     out.push_back({v[0], make_pose(q, Eigen::Vector3d(v[1], v[2], v[3]))});
+  }
+  if (out.empty()) fail(path, "no poses in trajectory file");
+  return out;
+}
+
+std::vector<Pose> read_kitti_poses(const std::string& path) {
+  std::vector<Pose> out;
+  for (const Row& row : read_rows(path)) {
+    if (row.fields.size() != 12)
+      fail(where(path, row), "expected 12 fields (a 3x4 pose matrix, row by row), found " +
+                                 std::to_string(row.fields.size()));
+    double v[12];
+    for (size_t i = 0; i < 12; ++i) v[i] = parse_number(path, row, i);
+    Eigen::Matrix3d r;
+    r << v[0], v[1], v[2], v[4], v[5], v[6], v[8], v[9], v[10];
+    const double error = (r.transpose() * r - Eigen::Matrix3d::Identity()).norm();
+    if (!(error <= kRotationTolerance) || r.determinant() <= 0)
+      fail(where(path, row), "the 3x3 part is not a rotation");
+    // Re-orthonormalise what the file's rounding left.
+    out.push_back(
+        make_pose(Eigen::Quaterniond(r).normalized(), Eigen::Vector3d(v[3], v[7], v[11])));
+  }
+  if (out.empty()) fail(path, "no poses in trajectory file");
+  return out;
+}
+
+std::vector<StampedPose> read_euroc_trajectory(const std::string& path) {
+  std::vector<StampedPose> out;
+  double prev = -INFINITY;
+  for (const Row& row : read_rows(path, /*commas=*/true)) {
+    require_fields(path, row, 8, "timestamp[ns], px, py, pz, qw, qx, qy, qz");
+    double v[8];
+    for (size_t i = 0; i < 8; ++i) v[i] = parse_number(path, row, i);
+    const double t = v[0] * 1e-9;
+    require_increasing(path, row, prev, t);
+    prev = t;
+    const Eigen::Quaterniond q(v[4], v[5], v[6], v[7]);
+    if (!(std::abs(q.norm() - 1.0) <= kQuaternionNormTolerance))
+      fail(where(path, row), "quaternion is not unit length");
+    out.push_back({t, make_pose(q, Eigen::Vector3d(v[1], v[2], v[3]))});
   }
   if (out.empty()) fail(path, "no poses in trajectory file");
   return out;

@@ -37,6 +37,16 @@ std::vector<StampedPose> read_tum_trajectory(const std::string& path);
 void write_tum_trajectory(const std::string& path, const std::vector<StampedPose>& poses,
                           const std::string& header = "");
 
+// The other trajectory formats evo reads, for systems that write them:
+// KITTI poses (12 numbers a line, the 3x4 camera-to-world matrix row by row,
+// no timestamps: one pose per frame in order) and EuRoC CSV
+// ("timestamp[ns],px,py,pz,qw,qx,qy,qz[,...]", further columns ignored;
+// timestamps are returned in seconds). The rotation must be orthonormal
+// within kRotationTolerance (Frobenius norm of R^T R - I).
+inline constexpr double kRotationTolerance = 1e-3;
+std::vector<Pose> read_kitti_poses(const std::string& path);
+std::vector<StampedPose> read_euroc_trajectory(const std::string& path);
+
 std::vector<StampedFile> read_file_list(const std::string& path);
 std::vector<Association> read_associations(const std::string& path);
 

@@ -49,6 +49,46 @@ TEST(TumIo, ErrorsNameFileAndLine) {
       Error);
 }
 
+TEST(TumIo, ReadsKittiPosesAndEurocCsv) {
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY()));
+  const Eigen::Matrix3d r = q.toRotationMatrix();
+  char line[512];
+  std::snprintf(line, sizeof(line),
+                "%.12f %.12f %.12f 1.5 %.12f %.12f %.12f -2 %.12f %.12f %.12f 0.25\n", r(0, 0),
+                r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2));
+  const auto kitti = read_kitti_poses(write_temp("kitti.txt", std::string(line) + line));
+  ASSERT_EQ(kitti.size(), 2u);
+  EXPECT_LT(rotation_angle_between(kitti[1], make_pose(q, {1.5, -2, 0.25})), 1e-9);
+  EXPECT_LT(translation_between(kitti[1], make_pose(q, {1.5, -2, 0.25})), 1e-12);
+  const auto euroc = read_euroc_trajectory(
+      write_temp("euroc.csv",
+                 "#timestamp [ns], p_x [m], p_y [m], p_z [m], q_w [], q_x [], q_y [], q_z []\n"
+                 "1403636579758555392,1,2,3,1,0,0,0\n1403636579763555584,1,2,3.5,0,1,0,0,9,9\n"));
+  ASSERT_EQ(euroc.size(), 2u);
+  EXPECT_NEAR(euroc[1].timestamp, 1403636579.763555584, 1e-6);
+  EXPECT_NEAR(euroc[1].pose.translation().z(), 3.5, 1e-12);
+  EXPECT_NEAR(euroc[1].pose.linear()(1, 1), -1.0, 1e-12);  // 180 deg about x
+  // Not a rotation, a NaN, a short line, unsorted times: the file and line.
+  auto error = [](auto read, const std::string& path) -> std::string {
+    try {
+      read(path);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const std::string shear = write_temp("shear.txt", "1 0.5 0 0 0 1 0 0 0 0 1 0\n");
+  EXPECT_NE(error(read_kitti_poses, shear).find(shear + ":1: the 3x3 part is not a rotation"),
+            std::string::npos);
+  const std::string nan = write_temp("nan.txt", "1 0 0 0 0 1 0 nan 0 0 1 0\n");
+  EXPECT_NE(error(read_kitti_poses, nan).find(nan + ":1"), std::string::npos);
+  const std::string unsorted =
+      write_temp("unsorted.csv", "2000,0,0,0,1,0,0,0\n1000,0,0,0,1,0,0,0\n");
+  EXPECT_NE(error(read_euroc_trajectory, unsorted).find(unsorted + ":2: timestamps must increase"),
+            std::string::npos);
+  EXPECT_THROW(read_euroc_trajectory(write_temp("short.csv", "1000,0,0,0\n")), Error);
+}
+
 std::string trajectory_error(const std::string& name, const std::string& text) {
   try {
     read_tum_trajectory(write_temp(name, text));

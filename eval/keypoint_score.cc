@@ -2,6 +2,8 @@
 
 #include <map>
 
+#include "common/error.h"
+
 namespace depot::eval {
 
 RejectionScore score_frame(const MotionTruth& truth, double timestamp,
@@ -35,6 +37,21 @@ KeypointFileScore score_keypoint_file(const MotionTruth& truth, const KeypointFi
     out.keypoints += f.keypoints.size();
   }
   out.frames = frames.size();
+  return out;
+}
+
+KeypointFileScore score_dataset_keypoints(const std::string& dataset,
+                                          const std::string& keypoints_path, float scale_factor) {
+  const MotionTruth truth(dataset);  // one error line when it has no labels
+  KeypointFrames frames;
+  frames.dataset = dataset;
+  frames.timestamps = truth.timestamps();
+  if (frames.timestamps.empty()) fail(dataset, "labels.txt lists no frames");
+  frames.image = truth.label_image(frames.timestamps.front()).size();
+  const KeypointFile file = read_keypoint_file(keypoints_path, frames);
+  KeypointFileScore out = score_keypoint_file(truth, file, scale_factor);
+  out.dataset_frames = frames.timestamps.size();
+  out.has_octave = file.has_octave;
   return out;
 }
 

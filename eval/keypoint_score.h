@@ -3,6 +3,7 @@
 // system: the built-in modes score each frame as they run it
 // (tools/runner/slam_runner.cc) and `depot eval rejection` scores any
 // system's per-keypoint file (eval/keypoint_file.h) with the same call.
+#include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -22,8 +23,10 @@ RejectionScore score_frame(const MotionTruth& truth, double timestamp,
 
 struct KeypointFileScore {
   RejectionScore score;
-  size_t frames = 0;     // frames with at least one row
-  size_t keypoints = 0;  // rows scored
+  size_t frames = 0;          // frames with at least one row
+  size_t keypoints = 0;       // rows scored
+  size_t dataset_frames = 0;  // frames the dataset's labels list (score_dataset_keypoints)
+  bool has_octave = false;    // the file had an octave column (score_dataset_keypoints)
 };
 
 // Every row of the file, frame by frame (rows of a frame need not be
@@ -31,5 +34,12 @@ struct KeypointFileScore {
 // checks them against the dataset).
 KeypointFileScore score_keypoint_file(const MotionTruth& truth, const KeypointFile& file,
                                       float scale_factor);
+
+// A per-keypoint file scored against a simulated dataset's labels: the
+// dataset's truth loaded, the file read and checked against its frames and
+// image size, then score_keypoint_file. Throws depot::Error (one line) for a
+// dataset without labels and for every problem of the file.
+KeypointFileScore score_dataset_keypoints(const std::string& dataset,
+                                          const std::string& keypoints_path, float scale_factor);
 
 }  // namespace depot::eval

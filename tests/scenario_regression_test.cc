@@ -7,9 +7,14 @@
 
 #include <cstdlib>
 
+#include "common/tum_io.h"
+#include "eval/ate.h"
 #include "eval/improvement.h"
+#include "eval/matched_trajectories.h"
+#include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
 #include "tests/support/slam_helpers.h"
+#include "tools/system/system_run.h"
 
 namespace depot::test {
 namespace {
@@ -78,6 +83,38 @@ TEST_P(ScenarioRegression, MeetsItsBounds) {
     EXPECT_EQ(masked.trajectory_size, masked.tracked);
     EXPECT_GE(masked.tracked_share(), m["tracked_share_min"].as<double>())
         << "masked tracked share";
+  }
+}
+
+// Other systems under test ("system:NAME" entries), through the path a
+// user's system takes (tools/system/system_run.h): ATE and tracked share.
+TEST_P(ScenarioRegression, SystemsUnderTestMeetTheirBounds) {
+  const YAML::Node root = YAML::LoadFile(kBounds);
+  const YAML::Node b = root["scenarios"][GetParam()];
+  std::vector<std::string> systems;
+  for (const auto& kv : b)
+    if (system::is_system_mode(kv.first.as<std::string>()))
+      systems.push_back(kv.first.as<std::string>());
+  if (systems.empty()) GTEST_SKIP() << GetParam() << " has no system:NAME bounds";
+  const std::string data = render_small({GetParam(), root["frames"].as<int>(), 640, false});
+  for (const std::string& mode : systems) {
+    const YAML::Node bounds = b[mode];
+    system::SystemRunRequest request;
+    request.dataset = data;
+    request.work_dir = temp_path("system");
+    request.log_path = request.work_dir + ".log";
+    request.depot_program = depot_binary();
+    const system::SystemRunResult run = system::run_system(
+        system::load_system_spec(system::find_system_file(system::system_of_mode(mode))), request);
+    const double ate =
+        eval::compute_ate(eval::match_trajectories(read_tum_trajectory(data + "/groundtruth.txt"),
+                                                   run.trajectory, {}, "gt", mode))
+            .statistics.rmse;
+    const double share = static_cast<double>(run.trajectory.size()) / run.frames;
+    std::printf("%s %s: ATE %.4f m, tracked %.1f %%, %.0f ms per frame\n", GetParam().c_str(),
+                mode.c_str(), ate, 100 * share, run.frame_ms);
+    EXPECT_LT(ate, bounds["ate_max"].as<double>()) << mode << " ATE RMSE";
+    EXPECT_GE(share, bounds["tracked_share_min"].as<double>()) << mode << " tracked share";
   }
 }
 

@@ -6,13 +6,10 @@
 #include <gtest/gtest.h>
 
 #include "common/error.h"
-#include "eval/ate.h"
-#include "eval/matched_trajectories.h"
-#include "slam/io/settings.h"
-#include "slam/io/tum_sequence.h"
 #include "slam/system/system.h"
 #include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
+#include "tests/support/slam_helpers.h"
 
 namespace depot::test {
 namespace {
@@ -25,27 +22,16 @@ struct SlamRun {
   size_t tracked = 0;  // frames whose state says they have a pose
 };
 
+// Plain ORB-SLAM2 (orb) through the product's run of one sequence;
+// synchronous mapping unless `threaded` (synchronous is reproducible).
 SlamRun run_slam(const std::string& dataset, bool threaded = false) {
-  slam::TumSequence sequence(dataset);
-  slam::SlamSettings settings = slam::load_settings(sequence.calibration_path());
-  settings.threaded_mapping = threaded;  // synchronous mapping is reproducible
-  sequence.set_depth_factor(settings.camera.depth_factor);
-  slam::System system(settings);
+  const SlamOutcome o = run_slam_mode(dataset, slam::RejectionMode::kOrb, threaded);
   SlamRun run;
-  cv::Mat bgr, depth;
-  for (size_t i = 0; i < sequence.size(); ++i) {
-    sequence.load(i, bgr, depth);
-    auto r = system.track(bgr, depth, sequence.entry(i).rgb_timestamp);
-    run.lost += r.state == slam::TrackingState::kLost;
-    ++run.frames;
-  }
-  system.finish();
-  auto estimate = system.trajectory();
-  run.trajectory_size = estimate.size();
-  for (const auto& s : system.frame_states()) run.tracked += slam::is_tracked(s.state);
-  auto gt = read_tum_trajectory(dataset + "/groundtruth.txt");
-  auto matched = eval::match_trajectories(gt, estimate, {}, "groundtruth", "estimate");
-  run.ate_rmse = eval::compute_ate(matched).statistics.rmse;
+  run.ate_rmse = o.ate_rmse;
+  run.lost = o.lost;
+  run.frames = static_cast<int>(o.frames);
+  run.trajectory_size = o.trajectory_size;
+  run.tracked = o.tracked;
   return run;
 }
 

@@ -3,6 +3,8 @@
 # Idempotent; uses sudo when not root. Nothing is downloaded outside apt.
 # chromium renders the HTML report in a headless screenshot test; opencv-doc
 # ships the sample photographs the default vocabulary is trained on.
+# python3-open3d runs the shipped example system under test
+# (scenes/systems/open3d_odometry), a dense RGB-D odometry baseline.
 set -euo pipefail
 
 packages=(
@@ -13,6 +15,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   chromium opencv-doc
+  python3-open3d
 )
 
 missing=()

@@ -19,7 +19,6 @@
 #include "common/percentile.h"
 #include "sim/pipeline/render_dataset.h"
 #include "sim/scenario/scenario_loader.h"
-#include "slam/io/settings.h"
 #include "slam/io/tum_sequence.h"
 #include "slam/reject/rejection_filter.h"
 #include "slam/system/system.h"
@@ -87,13 +86,7 @@ int main(int argc, char** argv) {
       depot::sim::render_dataset(s, r);
       dataset = rendered;
     }
-    depot::slam::TumSequence sequence(dataset);
-    depot::slam::SlamSettings settings;
-    if (!sequence.calibration_path().empty())
-      settings = depot::slam::load_settings(sequence.calibration_path());
-    settings.threaded_mapping = !sync;
-    sequence.set_depth_factor(settings.camera.depth_factor);
-    const size_t n = std::min<size_t>(frames, sequence.size());
+    const size_t n = std::min<size_t>(frames, depot::slam::TumSequence(dataset).size());
 
     struct Measured {
       std::vector<double> total, extract, match, optimize, other, filter, wait, detect, mask,
@@ -109,22 +102,23 @@ int main(int argc, char** argv) {
     // them, spread over it): what a lost frame's relocalisation costs.
     auto measure = [&](const std::string& run_mode, bool loop_closing, bool probe_relocalisation) {
       Measured m;
+      // The product's run of one sequence (runner::run_sequence), recorded
+      // frame by frame; each frame tracked as it arrives (no run-ahead), so
+      // the detector's wait is measured as the tracker sees it.
       depot::runner::RunOptions options;
       options.dataset = dataset;
       options.mode = run_mode;
       options.detector = detector_type;
       options.rejection.person_mask = person_mask_source;
-      depot::runner::RejectionSetup rejection =
-          depot::runner::make_rejection(options, settings.orb.scale_factor);
-      depot::slam::RejectionFilter* filter = rejection.filter.get();
-      depot::slam::SlamSettings run_settings = settings;
-      run_settings.loop_closing = loop_closing;
-      depot::slam::System system(run_settings, filter);
+      options.sync = sync;
+      options.loop_closing = loop_closing;
+      options.frames = n;
+      options.quiet = true;
+      options.run_ahead = false;
       m.rss_start = rss_mb();
-      cv::Mat bgr, depth;
-      for (size_t i = 0; i < n; ++i) {
-        sequence.load(i, bgr, depth);
-        auto r = system.track(bgr, depth, sequence.entry(i).rgb_timestamp);
+      options.on_frame = [&](size_t i, const depot::slam::TrackResult& r,
+                             const depot::slam::RejectionFilter* filter,
+                             const depot::slam::System& system) {
         m.lost += r.state == depot::slam::TrackingState::kLost;
         m.total.push_back(r.timing.total_ms);
         m.extract.push_back(r.timing.extract_ms);
@@ -139,24 +133,29 @@ int main(int argc, char** argv) {
           m.segment.push_back(filter->last_stats().segment_ms);
         }
         if (i == n / 10) m.rss_early = rss_mb(), m.kf_early = system.n_keyframes();
-      }
-      system.finish();
-      if (probe_relocalisation) {
-        double t = sequence.entry(n - 1).rgb_timestamp;
-        const cv::Mat black = cv::Mat::zeros(bgr.size(), CV_8UC3);
-        const cv::Mat no_depth = cv::Mat::zeros(depth.size(), CV_32F);
-        for (size_t k = 0; k < n; k += std::max<size_t>(1, n / 30)) {
-          system.track(black, no_depth, t += 0.033);
-          sequence.load(k, bgr, depth);
-          const auto r = system.track(bgr, depth, t += 0.033);
-          m.relocalise.push_back(r.timing.track_ms);
-          ++m.relocalise_tries;
-          m.relocalised += r.state == depot::slam::TrackingState::kRelocalized;
+      };
+      options.after_run = [&](depot::slam::System& system,
+                              const depot::slam::TumSequence& sequence) {
+        if (probe_relocalisation) {
+          cv::Mat bgr, depth;
+          sequence.load(0, bgr, depth);
+          double t = sequence.entry(n - 1).rgb_timestamp;
+          const cv::Mat black = cv::Mat::zeros(bgr.size(), CV_8UC3);
+          const cv::Mat no_depth = cv::Mat::zeros(depth.size(), CV_32F);
+          for (size_t k = 0; k < n; k += std::max<size_t>(1, n / 30)) {
+            system.track(black, no_depth, t += 0.033);
+            sequence.load(k, bgr, depth);
+            const auto r = system.track(bgr, depth, t += 0.033);
+            m.relocalise.push_back(r.timing.track_ms);
+            ++m.relocalise_tries;
+            m.relocalised += r.state == depot::slam::TrackingState::kRelocalized;
+          }
         }
-      }
-      m.rss_end = rss_mb();
-      m.kfs = system.n_keyframes();
-      m.points = system.n_map_points();
+        m.rss_end = rss_mb();
+        m.kfs = system.n_keyframes();
+        m.points = system.n_map_points();
+      };
+      depot::runner::run_sequence(options);
       return m;
     };
     const Measured no_loops = measure("orb", false, false);

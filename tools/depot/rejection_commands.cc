@@ -12,9 +12,7 @@
 
 #include "common/error.h"
 #include "common/staged_file.h"
-#include "eval/keypoint_file.h"
 #include "eval/keypoint_score.h"
-#include "eval/motion_truth.h"
 #include "eval/report_json.h"
 #include "tools/depot/commands.h"
 
@@ -42,21 +40,14 @@ nlohmann::json ratio_json(double v) {
 
 void run_rejection_eval(const RejectionArgs& a) {
   if (!a.json.empty()) check_output_file(a.json);
-  const eval::MotionTruth truth(a.dataset);  // one error line when it has no labels
-  eval::KeypointFrames frames;
-  frames.dataset = a.dataset;
-  frames.timestamps = truth.timestamps();
-  if (frames.timestamps.empty()) fail(a.dataset, "labels.txt lists no frames");
-  frames.image = truth.label_image(frames.timestamps.front()).size();
-  const eval::KeypointFile file = eval::read_keypoint_file(a.keypoints, frames);
   const eval::KeypointFileScore result =
-      eval::score_keypoint_file(truth, file, static_cast<float>(a.scale_factor));
+      eval::score_dataset_keypoints(a.dataset, a.keypoints, static_cast<float>(a.scale_factor));
   const eval::RejectionScore& s = result.score;
 
   std::printf("rejection of %s against the labels of %s\n", a.keypoints.c_str(), a.dataset.c_str());
   std::printf("  keypoints      %zu in %zu of %zu frames (octave %s, scale factor %g)\n",
-              result.keypoints, result.frames, frames.timestamps.size(),
-              file.has_octave ? "from the file" : "0: no octave column", a.scale_factor);
+              result.keypoints, result.frames, result.dataset_frames,
+              result.has_octave ? "from the file" : "0: no octave column", a.scale_factor);
   std::printf("  true positive  %ld (rejected, on a moving object)\n", s.true_positive);
   std::printf("  false positive %ld (rejected, static; %ld of them boundary points)\n",
               s.false_positive, s.boundary_false_positive);
@@ -73,10 +64,10 @@ void run_rejection_eval(const RejectionArgs& a) {
       {"dataset", a.dataset},
       {"keypoints", a.keypoints},
       {"scale_factor", a.scale_factor},
-      {"octave_column", file.has_octave},
+      {"octave_column", result.has_octave},
       {"keypoints_scored", result.keypoints},
       {"frames_scored", result.frames},
-      {"dataset_frames", frames.timestamps.size()},
+      {"dataset_frames", result.dataset_frames},
       {"true_positive", s.true_positive},
       {"false_positive", s.false_positive},
       {"false_negative", s.false_negative},

@@ -12,6 +12,7 @@
 #include "slam/io/frame_states_file.h"
 #include "tools/depot/commands.h"
 #include "tools/depot/detector_options.h"
+#include "tools/depot/system_run_command.h"
 #include "tools/runner/rejection_overlay.h"
 #include "tools/runner/slam_runner.h"
 
@@ -54,9 +55,29 @@ struct RunArgs {
   std::string output;
   std::string keyframes;
   size_t frames = 0;
+  std::string system;
 };
 
+// Another program as the system: only the options it can honour.
+void run_slam_system(const RunArgs& a, const CLI::App& cmd) {
+  for (const CLI::Option* option : cmd.get_options()) {
+    const std::string name = option->get_name();
+    if (option->count() == 0 || name == "dataset" || name == "--output" || name == "--system" ||
+        name == "--keypoints" || name == "--quiet")
+      continue;
+    fail(name, "has no effect with --system (the system's own file sets how it runs)");
+  }
+  SystemRunArgs s;
+  s.dataset = a.options.dataset;
+  s.system = a.system;
+  s.output = a.output;
+  s.keypoints = a.options.keypoints_csv;
+  s.quiet = a.options.quiet;
+  run_external_system(s);
+}
+
 void run_slam(RunArgs& a, const CLI::App& cmd) {
+  if (!a.system.empty()) return run_slam_system(a, cmd);
   check_options_used_by_mode(a.options.mode, cmd);
   if (cmd.count("--segmenter") &&
       a.options.rejection.person_mask == slam::RejectionParams::PersonMask::kDepth)
@@ -263,6 +284,10 @@ void register_slam_commands(CLI::App& app) {
       "Track each frame as it arrives, its detector started then (default: hand frame i+1 to the "
       "detector before tracking frame i, tracking it once frame i+1 has arrived)");
   add_rejection_options(run, args->options);
+  run->add_option("--system", args->system,
+                  "Run another SLAM system instead: a system YAML file (command template, "
+                  "trajectory format, time limit; see scenes/systems/) or a shipped system's "
+                  "name, e.g. open3d_odometry");
   run->callback([args, run] { run_slam(*args, *run); });
   register_vocabulary_commands(slam);
   register_map_commands(slam);

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <set>
 
 #include "common/error.h"
 #include "common/image_size.h"
@@ -14,6 +15,7 @@
 #include "tools/harness/sweep_report.h"
 #include "tools/harness/sweep_runner.h"
 #include "tools/harness/sweep_spec.h"
+#include "tools/system/system_spec.h"
 
 #include "sim/scenario/scenario_loader.h"
 
@@ -113,9 +115,20 @@ void add_run_options(CLI::App* cmd, SweepArgs& a) {
       ->default_str("");
   cmd->add_option("--set", a.fixed, "PARAM=VALUE for every run (same names as --vary)")
       ->default_str("");
-  cmd->add_option("--modes", a.modes, "Modes, comma separated")
+  // A system's file is loaded with the sweep (one error line naming it).
+  cmd->add_option("--modes", a.modes,
+                  "Modes, comma separated: orb, orb+yolo, orb+lk, full, masked, or "
+                  "system:NAME for another program (scenes/systems/NAME.yaml, or a path to "
+                  "your own system file)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"orb", "orb+yolo", "orb+lk", "full", "masked"}));
+      ->check(CLI::Validator(
+          [](const std::string& mode) -> std::string {
+            static const std::set<std::string> builtin = {"orb", "orb+yolo", "orb+lk", "full",
+                                                          "masked"};
+            if (builtin.count(mode) || system::is_system_mode(mode)) return "";
+            return mode + " is no mode (orb, orb+yolo, orb+lk, full, masked, or system:NAME)";
+          },
+          "MODE"));
   cmd->add_option("--seeds", a.seeds, "Seeds per cell (scenario and detector)")
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--frames", a.frames, "Frames per run")->check(CLI::Range(10, 100000));

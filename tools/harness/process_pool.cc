@@ -1,49 +1,24 @@
 #include "tools/harness/process_pool.h"
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
-#include <cstring>
-#include <filesystem>
 #include <map>
 #include <thread>
 
+#include "common/child_process.h"
 #include "common/error.h"
-
-extern char** environ;
-
-namespace fs = std::filesystem;
 
 namespace depot::harness {
 namespace {
 
 pid_t spawn(const ProcessJob& job) {
   if (job.argv.empty()) fail("process pool", "job without a program");
-  fs::create_directories(fs::path(job.log_path).parent_path());
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, job.log_path.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  std::vector<char*> argv;
-  for (const auto& a : job.argv) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) fail(job.argv[0], std::string("cannot start: ") + std::strerror(rc));
-  return pid;
-}
-
-int exit_code_of(int status) {
-  if (WIFEXITED(status)) return WEXITSTATUS(status);
-  if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
-  return 255;
+  ChildSpec child;
+  child.argv = job.argv;
+  child.log_path = job.log_path;
+  return start_child(child);
 }
 
 }  // namespace

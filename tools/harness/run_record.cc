@@ -46,6 +46,7 @@ nlohmann::json to_json(const RunRecord& r) {
           {"mode", r.mode},
           {"ok", r.ok},
           {"error", r.error},
+          {"log_tail", r.log_tail},
           {"frames", r.frames},
           {"tracked", r.tracked},
           {"tracked_share", number(r.frames ? static_cast<double>(r.tracked) / r.frames : NAN)},
@@ -106,6 +107,7 @@ RunRecord read_run_record(const std::string& path) {
     r.mode = j.at("mode").get<std::string>();
     r.ok = j.at("ok").get<bool>();
     r.error = j.at("error").get<std::string>();
+    r.log_tail = j.value("log_tail", std::string());  // records from before systems lack it
     r.frames = j.at("frames").get<int>();
     r.tracked = j.at("tracked").get<int>();
     r.lost = j.at("lost").get<int>();

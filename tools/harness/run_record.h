@@ -26,7 +26,8 @@ struct RunRecord {
   int seed = 1;
   std::string mode;
   bool ok = true;
-  std::string error;  // why the run produced no trajectory (ok = false)
+  std::string error;     // why the run produced no trajectory (ok = false)
+  std::string log_tail;  // a failed system's last log lines
 
   int frames = 0;
   int tracked = 0;  // frames with a pose in the final trajectory (states.txt: NEW_MAP, OK,

@@ -1,5 +1,6 @@
 #include "tools/harness/sweep_jobs.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include "common/staged_directory.h"
 #include "common/tum_io.h"
 #include "eval/ate.h"
+#include "eval/keypoint_score.h"
 #include "eval/matched_trajectories.h"
 #include "eval/motion_truth.h"
 #include "eval/result_plots.h"
@@ -19,6 +21,7 @@
 #include "slam/detect/sim_detector_config.h"
 #include "slam/io/frame_states_file.h"
 #include "tools/runner/slam_runner.h"
+#include "tools/system/system_run.h"
 
 namespace fs = std::filesystem;
 
@@ -29,7 +32,60 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// A system under test (another program) on the job's dataset: its
+// trajectory, states and keypoint file into `folder`, its accuracy and
+// rejection into `r`. A system that fails (exit code, time limit, a bad or
+// missing trajectory) is an outcome of the sweep: r.ok = false with the
+// reason and its log's tail; only an interruption throws.
+void run_system_into(const std::string& dataset, const SweepJob& job, const std::string& folder,
+                     RunRecord& r) {
+  const fs::path out(folder);
+  try {
+    const system::SystemSpec spec =
+        system::load_system_spec(system::find_system_file(system::system_of_mode(job.mode)));
+    system::SystemRunRequest request;
+    request.dataset = dataset;
+    request.work_dir = (out / "system").string();
+    request.log_path = (out / "system.log").string();
+    const system::SystemRunResult s = system::run_system(spec, request);
+    const std::vector<slam::StampedFrameState> states = system::frame_states(s);
+    const slam::TrackedShare share = slam::tracked_share(states);
+    r.frames = static_cast<int>(share.frames);
+    r.tracked = static_cast<int>(share.tracked);
+    r.lost = static_cast<int>(std::count_if(states.begin(), states.end(), [](const auto& f) {
+      return f.state == slam::FrameState::kLost;
+    }));
+    r.median_frame_ms = s.frame_ms;  // from its wall time: it reports none of its own
+    if (spec.writes_keypoints && eval::MotionTruth::available(dataset))
+      add_rejection(eval::score_dataset_keypoints(dataset, s.keypoints_path, 1.2f).score, r);
+    write_tum_trajectory((out / "trajectory.txt").string(), s.trajectory,
+                         "depot sweep run " + job.id + ": system " + spec.name);
+    write_text_file_atomic((out / "states.txt").string(),
+                           slam::format_frame_states(states, "depot sweep run " + job.id));
+    add_accuracy(read_tum_trajectory((fs::path(dataset) / "groundtruth.txt").string()),
+                 s.trajectory, (out / "ate.svg").string(), r);
+    fs::remove_all(out / "system");  // its scratch (generated inputs, raw outputs)
+  } catch (const Error& e) {
+    throw_if_interrupted(job.id);
+    r.ok = false;
+    r.error = e.what();
+    r.log_tail = system::log_tail((out / "system.log").string(), 10);
+  }
+}
+
 }  // namespace
+
+void add_rejection(const eval::RejectionScore& score, RunRecord& r) {
+  r.precision = score.precision();
+  r.precision_without_boundary = score.precision_without_boundary();
+  r.recall = score.recall();
+  r.true_positive = score.true_positive;
+  r.false_positive = score.false_positive;
+  r.false_positive_boundary = score.boundary_false_positive;
+  r.true_negative_boundary = score.boundary_true_negative;
+  r.false_negative = score.false_negative;
+  r.true_negative = score.true_negative;
+}
 
 void check_sweep_inputs(const SweepPlan& plan) {
   for (const auto& cell : plan.cells) {
@@ -138,11 +194,18 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
   r.moving_share = read_dataset_record(layout.dataset_record(job.dataset_id)).moving_share_mean;
 
   fs::create_directories(fs::path(layout.run_dir(job.id)).parent_path());
-  static const OutputKind kRunFolder{
-      "sweep run",
-      "result.json",
-      {"result.json", "trajectory.txt", "states.txt", "stats.csv", "ate.svg"}};
+  static const OutputKind kRunFolder{"sweep run",
+                                     "result.json",
+                                     {"result.json", "trajectory.txt", "states.txt", "stats.csv",
+                                      "ate.svg", "system.log", "keypoints.csv", "system"}};
   StagedDirectory out(layout.run_dir(job.id), kRunFolder, /*overwrite=*/true);
+  if (system::is_system_mode(job.mode)) {
+    run_system_into(dataset, job, out.path(), r);
+    r.seconds = seconds_since(start);
+    write_record((fs::path(out.path()) / "result.json").string(), to_json(r));
+    out.commit();
+    return r;
+  }
   runner::RunOptions options;
   options.dataset = dataset;
   options.mode = job.mode;
@@ -162,15 +225,7 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
     r.median_frame_ms = s.median_ms;
     if (job.mode != "orb") {
       r.rejection_ms = s.filter_ms;
-      r.precision = s.score.precision();
-      r.precision_without_boundary = s.score.precision_without_boundary();
-      r.recall = s.score.recall();
-      r.true_positive = s.score.true_positive;
-      r.false_positive = s.score.false_positive;
-      r.false_positive_boundary = s.score.boundary_false_positive;
-      r.true_negative_boundary = s.score.boundary_true_negative;
-      r.false_negative = s.score.false_negative;
-      r.true_negative = s.score.true_negative;
+      add_rejection(s.score, r);
     }
     write_tum_trajectory((fs::path(out.path()) / "trajectory.txt").string(), s.trajectory,
                          "depot sweep run " + job.id + ": tracked frames only");

@@ -4,11 +4,14 @@
 //   render: the cell's scenario with its overrides and the job's seed to
 //           data/<id>/, then data/<id>.json with the measured moving share;
 //   slam:   one mode on that dataset to runs/<id>/ (trajectory.txt,
-//           stats.csv, ate.svg, result.json), staged so it appears whole.
+//           stats.csv, ate.svg, result.json), staged so it appears whole;
+//           a system under test ("system:NAME", tools/system/) writes
+//           system.log (its output) instead of stats.csv.
 #include <string>
 #include <vector>
 
 #include "common/tum_io.h"
+#include "eval/motion_truth.h"
 #include "tools/harness/run_record.h"
 #include "tools/harness/sweep_plan.h"
 
@@ -26,6 +29,9 @@ DatasetRecord run_render_job(const SweepPlan& plan, const SweepLayout& layout, c
 // camera, which is an outcome of the sweep, not a failed job.
 void add_accuracy(const std::vector<StampedPose>& truth, const std::vector<StampedPose>& trajectory,
                   const std::string& plot_path, RunRecord& r);
+
+// A run's rejection figures from its score.
+void add_rejection(const eval::RejectionScore& score, RunRecord& r);
 
 // A run whose tracking never starts is recorded with ok = false and its
 // reason; other errors (missing dataset, interruption) throw.

@@ -8,6 +8,7 @@
 #include "common/error.h"
 #include "common/tum_io.h"
 #include "slam/reject/rejection_filter.h"
+#include "tools/system/system_spec.h"
 
 namespace fs = std::filesystem;
 
@@ -22,6 +23,8 @@ std::string file_safe(const std::string& text) {
 }
 
 bool parameter_affects_mode(const ParameterKey& parameter, const std::string& mode) {
+  // Another program has its own settings: only the scenario reaches it.
+  if (system::is_system_mode(mode)) return parameter.target == ParameterTarget::kScenario;
   const slam::RejectionMode m = slam::parse_rejection_mode(mode);
   switch (parameter.target) {
     case ParameterTarget::kScenario:

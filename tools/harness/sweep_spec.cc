@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "common/image_size.h"
+#include "tools/system/system_spec.h"
 
 namespace depot::harness {
 namespace {
@@ -89,8 +90,13 @@ void validate(const SweepSpec& spec, const std::string& where) {
   static const std::set<std::string> known = {"orb", "orb+yolo", "orb+lk", "full", "masked"};
   std::set<std::string> seen;
   for (const auto& m : spec.modes) {
-    if (!known.count(m))
-      fail(where, "unknown mode '" + m + "' (expected orb, orb+yolo, orb+lk, full, masked)");
+    if (system::is_system_mode(m)) {
+      // Another program: its file must load now, not when its first job runs.
+      system::load_system_spec(system::find_system_file(system::system_of_mode(m)));
+    } else if (!known.count(m)) {
+      fail(where, "unknown mode '" + m +
+                      "' (expected orb, orb+yolo, orb+lk, full, masked, or system:NAME)");
+    }
     if (!seen.insert(m).second) fail(where, "mode '" + m + "' given twice");
   }
   std::set<std::string> names;

@@ -404,6 +404,7 @@ RunSummary run_sequence(const RunOptions& o) {
                     frame_score.false_negative, fp_z, fp_q);
       stats->stream() << line;
     }
+    if (o.on_frame) o.on_frame(i, r, filter, system);
     char detail[160];
     std::snprintf(detail, sizeof(detail), "frame %zu %s features %d/%d inliers %d %.1f ms", i,
                   slam::tracking_state_name(r.state), r.kept, r.keypoints, r.stats.inliers,
@@ -412,6 +413,7 @@ RunSummary run_sequence(const RunOptions& o) {
   }
   progress.finish();
   system.finish();
+  if (o.after_run) o.after_run(system, sequence);
   if (!o.save_map.empty()) system.save_map(o.save_map);
   if (dense) {
     const DenseMapResult cloud =

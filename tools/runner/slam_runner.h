@@ -3,6 +3,7 @@
 // chosen detector, and collects what `depot slam run` and the ablation
 // report: trajectory, timings, rejection statistics and (for simulated
 // datasets) rejection precision/recall against ground truth.
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -13,8 +14,10 @@
 #include "eval/motion_truth.h"
 #include "slam/dense/dense_cloud.h"
 #include "slam/detect/sim_detector_config.h"
+#include "slam/io/tum_sequence.h"
 #include "slam/loop/loop_closer.h"
 #include "slam/reject/rejection_filter.h"
+#include "slam/system/system.h"
 #include "slam/track/tracking_state.h"
 
 namespace depot::runner {
@@ -63,6 +66,16 @@ struct RunOptions {
   // then tracked once frame i+1 has arrived (one frame of latency). Off:
   // frame i is tracked when it arrives and its detector starts then.
   bool run_ahead = true;
+  // Per-frame recorder (optional), called in the tracking thread after each
+  // frame: its index, tracking result, the rejection filter (null in orb)
+  // and the system, e.g. for a benchmark's timings and memory.
+  std::function<void(size_t frame, const slam::TrackResult& result,
+                     const slam::RejectionFilter* filter, const slam::System& system)>
+      on_frame;
+  // Called once after the last frame (optional), with the system finished
+  // and the sequence, before the summary is taken: e.g. to probe
+  // relocalisation with frames shown again.
+  std::function<void(slam::System& system, const slam::TumSequence& sequence)> after_run;
 };
 
 // Sets one rejection option by name, as a sweep's "rejection.KEY=VALUE":

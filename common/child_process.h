@@ -1,0 +1,30 @@
+#pragma once
+// Starting another program as a child process: argv without a shell, stdin
+// from /dev/null, stdout and stderr into one log file, optionally in its own
+// process group (so a time limit or Ctrl-C can stop everything it started)
+// and with extra environment variables and a working folder.
+#include <sys/types.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace depot {
+
+struct ChildSpec {
+  std::vector<std::string> argv;  // argv[0]: a path, or a name looked up on PATH
+  std::string log_path;           // stdout and stderr; its folder is created
+  bool append_log = false;        // append instead of truncating
+  bool own_process_group = false;
+  std::string working_dir;                 // "" = the caller's
+  std::map<std::string, std::string> env;  // added to (or replacing in) the caller's
+};
+
+// Throws depot::Error("<argv[0]>: cannot start: <reason>") when the program
+// cannot be found or started (the log file is left as it was opened).
+pid_t start_child(const ChildSpec& spec);
+
+// A waitpid status as a shell reports it: the exit code, or 128 + signal.
+int exit_code_of(int status);
+
+}  // namespace depot

@@ -1,0 +1,212 @@
+// Other SLAM systems under test (`depot slam run --system`, sweeps'
+// `system:NAME`): the project's own masked mode wrapped as another program
+// gives exactly the built-in figures (TUM and EuRoC trajectories); Open3D's
+// odometry, the shipped example, runs through the same path; a system that
+// fails in any way is one error line and no output, and in a sweep a failed
+// run with its reason while the sweep goes on.
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "tests/support/dataset_reader.h"
+#include "tests/support/render_helpers.h"
+
+namespace fs = std::filesystem;
+
+namespace depot::test {
+namespace {
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The data lines of a trajectory file (comments differ between writers).
+std::string poses_of(const std::string& path) {
+  std::istringstream in(read_text(path));
+  std::string line, out;
+  while (std::getline(in, line))
+    if (!line.empty() && line[0] != '#') out += line + "\n";
+  return out;
+}
+
+std::string match(const std::string& text, const std::string& pattern) {
+  std::smatch m;
+  return std::regex_search(text, m, std::regex(pattern)) ? m.str(1) : "";
+}
+
+// 12 frames of walking people at 320x240, rendered once per process.
+const std::string& walking() {
+  static const std::string d = render_small({"depot_walking_xyz", 12, 320, false});
+  return d;
+}
+
+std::string ate_rmse(const std::string& dataset, const std::string& trajectory) {
+  const DepotResult r = depot("eval ate " + dataset + "/groundtruth.txt " + trajectory);
+  EXPECT_EQ(r.code, 0) << r.output;
+  return match(r.output, R"(rmse\s+([0-9.]+))");
+}
+
+TEST(CliSystem, OwnMaskedModeWrappedAsASystemGivesTheBuiltInFigures) {
+  const std::string builtin = temp_path("builtin") + ".txt",
+                    wrapped = temp_path("wrapped") + ".txt";
+  const std::string builtin_keypoints = temp_path("kb") + ".csv";
+  const DepotResult a = depot("slam run " + walking() + " --mode masked --mapping sync -q -o " +
+                              builtin + " --keypoints " + builtin_keypoints);
+  ASSERT_EQ(a.code, 0) << a.output;
+  const std::string keypoints = temp_path("kw") + ".csv";
+  const DepotResult b = depot("slam run " + walking() + " --system depot_masked -q -o " + wrapped +
+                              " --keypoints " + keypoints);
+  ASSERT_EQ(b.code, 0) << b.output;
+  EXPECT_EQ(poses_of(wrapped), poses_of(builtin));
+  EXPECT_EQ(ate_rmse(walking(), wrapped), ate_rmse(walking(), builtin));
+  const std::string scores = "rejection vs ground truth: ([^\n]*)";
+  ASSERT_NE(match(a.output, scores), "") << a.output;
+  EXPECT_EQ(match(b.output, scores), match(a.output, scores)) << b.output;
+  EXPECT_TRUE(read_text(keypoints) == read_text(builtin_keypoints)) << "keypoint files differ";
+  // The states beside it and the system's own output.
+  EXPECT_TRUE(fs::exists(fs::path(wrapped).replace_extension(".states.txt")));
+  EXPECT_TRUE(fs::exists(fs::path(wrapped).replace_extension(".system.log")));
+
+  // The same run written as EuRoC CSV (nanoseconds, qw first) reads back to
+  // the same ATE.
+  const std::string euroc = write_yaml("euroc", R"(command:
+  - /bin/sh
+  - -c
+  - |
+    "$0" slam run "$1" --mode masked --mapping sync -q -o "$2.tum" &&
+    awk '!/^#/ { printf "%.0f,%s,%s,%s,%s,%s,%s,%s\n", $1 * 1e9, $2, $3, $4, $8, $5, $6, $7 }' "$2.tum" > "$2"
+  - "{depot}"
+  - "{dataset}"
+  - "{trajectory}"
+trajectory_format: euroc
+)");
+  const std::string from_euroc = temp_path("from_euroc") + ".txt";
+  const DepotResult c =
+      depot("slam run " + walking() + " --system " + euroc + " -q -o " + from_euroc);
+  ASSERT_EQ(c.code, 0) << c.output;
+  EXPECT_EQ(ate_rmse(walking(), from_euroc), ate_rmse(walking(), builtin));
+}
+
+TEST(CliSystem, Open3dOdometryRunsAsASystem) {
+  const std::string still = render_small({"depot_static", 10, 320, false});
+  const std::string out = temp_path("open3d") + ".txt";
+  const DepotResult r = depot("slam run " + still + " --system open3d_odometry -q -o " + out);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("tracked 10 of 10 frames"), std::string::npos) << r.output;
+  const std::string rmse = ate_rmse(still, out);
+  ASSERT_NE(rmse, "");
+  EXPECT_LT(std::stod(rmse), 0.03) << "Open3D odometry on a static scene, 10 frames";
+}
+
+// A system file whose command is a shell script; `script` sees the
+// trajectory path as $1 and the first frame's timestamp as $2.
+std::string script_system(const std::string& tag, const std::string& script,
+                          const std::string& extra = "") {
+  return write_yaml(tag, "command: [/bin/sh, -c, '" + script +
+                             "', sh, \"{trajectory}\", \"{calibration}\"]\n" + extra);
+}
+
+struct Failure {
+  std::string name, system, reason;
+};
+
+TEST(CliSystem, AFailingSystemIsOneErrorLineAndNoOutput) {
+  // The dataset's first two frames, for trajectories that are wrong otherwise.
+  std::istringstream rgb(read_text(walking() + "/rgb.txt"));
+  std::string line, t0, t1;
+  while (std::getline(rgb, line) && t1.empty())
+    if (!line.empty() && line[0] != '#') (t0.empty() ? t0 : t1) = line.substr(0, line.find(' '));
+  const std::string pose = " 0 0 0 0 0 0 1";
+  const std::vector<Failure> failures = {
+      {"unknown placeholder",
+       write_yaml("placeholder", "command: [/bin/true, \"{trajectory}\", \"{frames}\"]\n"),
+       "unknown placeholder '{frames}'"},
+      {"command not found", write_yaml("missing", "command: [/no/such/slam, \"{trajectory}\"]\n"),
+       "command not started: /no/such/slam: cannot start"},
+      {"exits non-zero", script_system("exit3", "echo tracking failed >&2; exit 3"),
+       "exited with code 3 (log "},
+      {"writes nothing", script_system("nothing", "exit 0"), "wrote no trajectory"},
+      {"NaN", script_system("nan", "echo " + t0 + " nan 0 0 0 0 0 1 > \"$1\""), "is not finite"},
+      {"unsorted",
+       script_system("unsorted", "printf \"" + t1 + pose + "\\n" + t0 + pose + "\\n\" > \"$1\""),
+       "timestamps must increase"},
+      {"foreign timestamps", script_system("foreign", "echo 12.5" + pose + " > \"$1\""),
+       "timestamp 12.500000 is no frame of the dataset"},
+      {"past its time limit", script_system("slow", "sleep 31.25", "time_limit_s: 1\n"),
+       "stopped at its time limit of 1 s"},
+  };
+  for (const Failure& f : failures) {
+    SCOPED_TRACE(f.name);
+    const std::string out = temp_path("failed") + ".txt";
+    const auto start = std::chrono::steady_clock::now();
+    const DepotResult r =
+        depot("slam run " + walking() + " --system " + f.system + " -q -o " + out);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_NE(r.code, 0);
+    EXPECT_NE(r.output.find(f.reason), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_FALSE(fs::exists(out));
+    EXPECT_FALSE(fs::exists(fs::path(out).replace_extension(".states.txt")));
+    EXPECT_LT(seconds, 20.0);
+  }
+  // The slow system's whole process group was stopped: no sleep left behind.
+  std::string ps;
+  run_command("ps -eo args | grep -c '^sleep 31.25$'", &ps);
+  EXPECT_EQ(ps, "0\n") << "a process the system started outlived its time limit";
+}
+
+TEST(CliSystem, CtrlCStopsTheSystemAndEverythingItStarted) {
+  const std::string slow = script_system("ctrl_c", "sleep 32.5 & sleep 32.5; wait");
+  const std::string out = temp_path("interrupted") + ".txt";
+  std::string printed;
+  const auto start = std::chrono::steady_clock::now();
+  const int code =
+      run_command(depot_binary() + " slam run " + walking() + " --system " + slow + " -q -o " +
+                      out + " 2>&1 & pid=$!; sleep 1; kill -INT $pid; wait $pid",
+                  &printed);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_NE(code, 0);
+  EXPECT_NE(printed.find("interrupted"), std::string::npos) << printed;
+  EXPECT_LT(seconds, 15.0);
+  EXPECT_FALSE(fs::exists(out));
+  std::string ps;
+  run_command("ps -eo args | grep -c '^sleep 32.5$'", &ps);
+  EXPECT_EQ(ps, "0\n") << "a process the system started outlived Ctrl-C";
+}
+
+TEST(CliSystem, ASweepRecordsAFailedSystemAndGoesOn) {
+  const std::string broken = script_system("broken", "echo no map >&2; exit 2");
+  const std::string out = temp_path("sweep");
+  const DepotResult r = depot("sweep run depot_static -o " + out + " --modes orb,system:" + broken +
+                              " --seeds 1 --frames 10 --width 160 -q");
+  ASSERT_EQ(r.code, 0) << r.output;
+  int failed = 0, ok = 0;
+  for (const auto& run : fs::directory_iterator(out + "/runs")) {
+    const nlohmann::json j = nlohmann::json::parse(read_text(run.path().string() + "/result.json"));
+    if (j["mode"] == "orb") {
+      ok += j["ok"].get<bool>();
+      continue;
+    }
+    EXPECT_FALSE(j["ok"].get<bool>());
+    EXPECT_NE(j["error"].get<std::string>().find("exited with code 2"), std::string::npos);
+    EXPECT_NE(j["log_tail"].get<std::string>().find("no map"), std::string::npos);
+    ++failed;
+  }
+  EXPECT_EQ(ok, 1);
+  EXPECT_EQ(failed, 1);
+  EXPECT_TRUE(fs::exists(out + "/report/report.html"));
+}
+
+}  // namespace
+}  // namespace depot::test

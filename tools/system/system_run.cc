@@ -1,0 +1,282 @@
+#include "tools/system/system_run.h"
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "common/child_process.h"
+#include "common/error.h"
+#include "common/interrupt.h"
+#include "slam/io/settings.h"
+#include "slam/io/tum_sequence.h"
+
+namespace fs = std::filesystem;
+
+namespace depot::system {
+namespace {
+
+// Within this of a frame's rgb timestamp, a pose is that frame's.
+constexpr double kTimestampTolerance = 1e-3;
+
+std::string own_program() {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string("depot") : exe.string();
+}
+
+std::string format_double(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%.9g", v);
+  return buf;
+}
+
+// ORB-SLAM2's RGB-D settings file (Examples/RGB-D/TUM1.yaml's keys) for
+// systems built on it.
+std::string orbslam_settings(const slam::SlamSettings& s, double fps) {
+  const slam::PinholeCamera& c = s.camera;
+  std::string y = "%YAML:1.0\n# Written by depot for a system under test (ORB-SLAM2 RGB-D keys).\n";
+  auto line = [&](const std::string& key, const std::string& value) {
+    y += key + ": " + value + "\n";
+  };
+  line("Camera.fx", format_double(c.fx));
+  line("Camera.fy", format_double(c.fy));
+  line("Camera.cx", format_double(c.cx));
+  line("Camera.cy", format_double(c.cy));
+  for (const char* k : {"Camera.k1", "Camera.k2", "Camera.p1", "Camera.p2", "Camera.k3"})
+    line(k, "0.0");
+  line("Camera.width", std::to_string(c.width));
+  line("Camera.height", std::to_string(c.height));
+  line("Camera.fps", format_double(fps));
+  line("Camera.bf", format_double(c.bf));
+  line("Camera.RGB", "1");
+  line("ThDepth", format_double(c.close_depth * c.fx / c.bf));
+  line("DepthMapFactor", format_double(c.depth_factor));
+  line("ORBextractor.nFeatures", std::to_string(s.orb.n_features));
+  line("ORBextractor.scaleFactor", format_double(s.orb.scale_factor));
+  line("ORBextractor.nLevels", std::to_string(s.orb.n_levels));
+  line("ORBextractor.iniThFAST", std::to_string(s.orb.ini_fast));
+  line("ORBextractor.minThFAST", std::to_string(s.orb.min_fast));
+  line("Viewer.KeyFrameSize", "0.05");
+  line("Viewer.KeyFrameLineWidth", "1");
+  line("Viewer.GraphLineWidth", "0.9");
+  line("Viewer.PointSize", "2");
+  line("Viewer.CameraSize", "0.08");
+  line("Viewer.CameraLineWidth", "3");
+  line("Viewer.ViewpointX", "0");
+  line("Viewer.ViewpointY", "-0.7");
+  line("Viewer.ViewpointZ", "-1.8");
+  line("Viewer.ViewpointF", "500");
+  return y;
+}
+
+// Stops the system's whole process group: SIGTERM, then SIGKILL after a
+// grace period; reaps the child.
+void stop_group(pid_t pid) {
+  kill(-pid, SIGTERM);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  int status = 0;
+  while (waitpid(pid, &status, WNOHANG) == 0) {
+    if (std::chrono::steady_clock::now() > deadline) {
+      kill(-pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(-pid, SIGKILL);  // whatever it started and left behind
+}
+
+std::string with_log(const std::string& reason, const std::string& log_path) {
+  const std::string last = log_tail(log_path, 1);
+  return last.empty() ? reason + " (log " + log_path + " is empty)"
+                      : reason + " (log " + log_path + " ends: " + last + ")";
+}
+
+// The system's trajectory, in the dataset's frames' timestamps.
+std::vector<StampedPose> read_system_trajectory(const SystemSpec& spec, const std::string& path,
+                                                const slam::TumSequence& sequence) {
+  std::vector<double> frame_times;
+  for (size_t i = 0; i < sequence.size(); ++i)
+    frame_times.push_back(sequence.entry(i).rgb_timestamp);
+  if (spec.trajectory_format == TrajectoryFormat::kKitti) {
+    const std::vector<Pose> poses = read_kitti_poses(path);
+    if (poses.size() != frame_times.size())
+      fail(path, "a KITTI trajectory has one pose per frame: " + std::to_string(poses.size()) +
+                     " poses for " + std::to_string(frame_times.size()) + " frames");
+    std::vector<StampedPose> out;
+    for (size_t i = 0; i < poses.size(); ++i) out.push_back({frame_times[i], poses[i]});
+    return out;
+  }
+  std::vector<StampedPose> out = spec.trajectory_format == TrajectoryFormat::kEuroc
+                                     ? read_euroc_trajectory(path)
+                                     : read_tum_trajectory(path);
+  std::vector<double> sorted = frame_times;
+  std::sort(sorted.begin(), sorted.end());
+  for (StampedPose& p : out) {
+    auto it = std::lower_bound(sorted.begin(), sorted.end(), p.timestamp);
+    double nearest = INFINITY;
+    if (it != sorted.end()) nearest = *it;
+    if (it != sorted.begin() && std::abs(*(it - 1) - p.timestamp) < std::abs(nearest - p.timestamp))
+      nearest = *(it - 1);
+    if (!(std::abs(nearest - p.timestamp) <= kTimestampTolerance)) {
+      char buf[160];
+      std::snprintf(buf, sizeof(buf),
+                    "timestamp %.6f is no frame of the dataset (nearest %.6f; allowed %.0f ms)",
+                    p.timestamp, nearest, 1000 * kTimestampTolerance);
+      fail(path, buf);
+    }
+    p.timestamp = nearest;  // the frame's own timestamp, for exact matching
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<slam::StampedFrameState> frame_states(const SystemRunResult& result) {
+  std::vector<slam::StampedFrameState> states;
+  size_t next = 0;  // the next pose (poses carry frames' own timestamps, in order)
+  bool started = false;
+  for (double t : result.frame_timestamps) {
+    slam::FrameState state = started ? slam::FrameState::kLost : slam::FrameState::kNotInitialized;
+    if (next < result.trajectory.size() && result.trajectory[next].timestamp == t) {
+      state = started ? slam::FrameState::kOk : slam::FrameState::kNewMap;
+      started = true;
+      ++next;
+    }
+    states.push_back({t, state});
+  }
+  return states;
+}
+
+std::string log_tail(const std::string& path, int lines) {
+  std::ifstream in(path);
+  if (!in) return "";
+  std::deque<std::string> tail;
+  std::string line;
+  while (std::getline(in, line)) {
+    // Progress lines redraw with '\r': keep what the line ended as.
+    const size_t cr = line.find_last_of('\r', line.size() >= 2 ? line.size() - 2 : 0);
+    if (cr != std::string::npos && cr + 1 < line.size()) line = line.substr(cr + 1);
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find_first_not_of(" \t") == std::string::npos) continue;
+    tail.push_back(line);
+    if (static_cast<int>(tail.size()) > lines) tail.pop_front();
+  }
+  std::string out;
+  for (const auto& l : tail) out += (out.empty() ? "" : "\n") + l;
+  return out;
+}
+
+SystemRunResult run_system(const SystemSpec& spec, const SystemRunRequest& request) {
+  const std::string who = "system " + spec.name;
+  const slam::TumSequence sequence(request.dataset);
+  fs::create_directories(request.work_dir);
+  const fs::path work = fs::absolute(request.work_dir);
+
+  std::map<std::string, std::string> values;
+  values["dataset"] = fs::absolute(request.dataset).string();
+  values["work"] = work.string();
+  values["system_dir"] = fs::absolute(spec.path).parent_path().string();
+  values["depot"] = request.depot_program.empty() ? own_program() : request.depot_program;
+  const std::string extension =
+      spec.trajectory_format == TrajectoryFormat::kEuroc ? ".csv" : ".txt";
+  values["trajectory"] = (work / ("trajectory" + extension)).string();
+  values["keypoints"] = (work / "keypoints.csv").string();
+  // The calibration and what is derived from it, when the dataset has one.
+  const std::string calibration = sequence.calibration_path();
+  if (!calibration.empty()) {
+    const slam::SlamSettings settings = slam::load_settings(calibration);
+    const slam::PinholeCamera& c = settings.camera;
+    double fps = 30;
+    if (sequence.size() > 1)
+      fps = (sequence.size() - 1) /
+            (sequence.entry(sequence.size() - 1).rgb_timestamp - sequence.entry(0).rgb_timestamp);
+    values["calibration"] = fs::absolute(calibration).string();
+    values["intrinsics"] = (work / "intrinsics.txt").string();
+    values["orbslam_settings"] = (work / "orbslam_settings.yaml").string();
+    values["depth_factor"] = format_double(c.depth_factor);
+    write_text_file_atomic(values["intrinsics"], format_double(c.fx) + " " + format_double(c.fy) +
+                                                     " " + format_double(c.cx) + " " +
+                                                     format_double(c.cy) + "\n");
+    write_text_file_atomic(values["orbslam_settings"], orbslam_settings(settings, fps));
+  }
+  for (const std::string& arg : spec.command)
+    for (const char* needs :
+         {"{calibration}", "{intrinsics}", "{orbslam_settings}", "{depth_factor}"})
+      if (calibration.empty() && arg.find(needs) != std::string::npos)
+        fail(request.dataset,
+             std::string("has no calibration.yaml, which ") + needs + " needs (" + who + ")");
+  // A stale output from an earlier run must not pass for this one's.
+  fs::remove(values["trajectory"]);
+  fs::remove(values["keypoints"]);
+
+  ChildSpec child;
+  child.argv = expand_command(spec, values);
+  child.log_path = request.log_path;
+  child.own_process_group = true;
+  child.working_dir = work.string();
+  child.env = spec.env;
+  const auto start = std::chrono::steady_clock::now();
+  pid_t pid = 0;
+  try {
+    pid = start_child(child);
+  } catch (const Error& e) {
+    fail(who, std::string("command not started: ") + e.what());
+  }
+  const std::atomic<bool>& stop = request.stop ? *request.stop : interrupt_flag();
+  int status = 0;
+  while (true) {
+    const pid_t done = waitpid(pid, &status, WNOHANG);
+    if (done == pid) break;
+    if (done < 0) fail(who, "lost its process");
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (stop.load()) {
+      stop_group(pid);
+      fail(who, "interrupted");
+    }
+    if (seconds > spec.time_limit_s) {
+      stop_group(pid);
+      fail(who, with_log("stopped at its time limit of " + format_double(spec.time_limit_s) + " s",
+                         request.log_path));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(-pid, SIGKILL);  // nothing the system started outlives it
+  SystemRunResult result;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.frames = sequence.size();
+  for (size_t i = 0; i < sequence.size(); ++i)
+    result.frame_timestamps.push_back(sequence.entry(i).rgb_timestamp);
+  result.frame_ms = result.frames ? 1000.0 * result.seconds / result.frames : 0.0;
+  const int code = exit_code_of(status);
+  if (code != 0)
+    fail(who, with_log(code > 128 ? "killed by signal " + std::to_string(code - 128)
+                                  : "exited with code " + std::to_string(code),
+                       request.log_path));
+  result.trajectory_path = values["trajectory"];
+  if (!fs::is_regular_file(result.trajectory_path))
+    fail(who, with_log("wrote no trajectory at " + result.trajectory_path, request.log_path));
+  try {
+    result.trajectory = read_system_trajectory(spec, result.trajectory_path, sequence);
+  } catch (const Error& e) {
+    fail(who, std::string("its trajectory: ") + e.what());
+  }
+  if (spec.writes_keypoints) {
+    result.keypoints_path = values["keypoints"];
+    if (!fs::is_regular_file(result.keypoints_path))
+      fail(who, with_log("wrote no keypoint file at " + result.keypoints_path, request.log_path));
+  }
+  return result;
+}
+
+}  // namespace depot::system

@@ -1,0 +1,90 @@
+// System files: what a command may name, what a bad file says, and how a
+// name or path finds its file.
+#include "tools/system/system_spec.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "common/error.h"
+
+namespace fs = std::filesystem;
+
+namespace depot::system {
+namespace {
+
+std::string write_system(const std::string& name, const std::string& text) {
+  const fs::path path = fs::temp_directory_path() / ("depot_system_spec_" + name + ".yaml");
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+std::string load_error(const std::string& name, const std::string& text) {
+  try {
+    load_system_spec(write_system(name, text));
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SystemSpec, LoadsAndExpandsACommand) {
+  const SystemSpec spec = load_system_spec(write_system("good", R"(
+description: a test system
+command: [/usr/bin/env, "--dataset={dataset}", "{trajectory}", "{keypoints}", "awk { print }"]
+trajectory_format: euroc
+time_limit_s: 2.5
+env: {OMP_NUM_THREADS: "1"}
+)"));
+  EXPECT_EQ(spec.name, "depot_system_spec_good");
+  EXPECT_EQ(spec.trajectory_format, TrajectoryFormat::kEuroc);
+  EXPECT_DOUBLE_EQ(spec.time_limit_s, 2.5);
+  EXPECT_EQ(spec.env.at("OMP_NUM_THREADS"), "1");
+  EXPECT_TRUE(spec.writes_keypoints);
+  const std::vector<std::string> argv =
+      expand_command(spec, {{"dataset", "/d"}, {"trajectory", "/t.csv"}, {"keypoints", "/k.csv"}});
+  const std::vector<std::string> expected = {"/usr/bin/env", "--dataset=/d", "/t.csv", "/k.csv",
+                                             "awk { print }"};
+  EXPECT_EQ(argv, expected);  // braces that are no placeholder stay text
+}
+
+TEST(SystemSpec, BadFilesNameTheFileAndTheProblem) {
+  EXPECT_NE(load_error("placeholder", "command: [x, \"{trajectory}\", \"{frames}\"]\n")
+                .find(":1: unknown placeholder '{frames}'"),
+            std::string::npos);
+  EXPECT_NE(
+      load_error("no_trajectory", "command: [x, \"{dataset}\"]\n").find("never names {trajectory}"),
+      std::string::npos);
+  EXPECT_NE(load_error("no_command", "trajectory_format: tum\n").find("no command"),
+            std::string::npos);
+  EXPECT_NE(load_error("empty_command", "command: []\n").find("non-empty list"), std::string::npos);
+  EXPECT_NE(load_error("format", "command: [x, \"{trajectory}\"]\ntrajectory_format: g2o\n")
+                .find(":2: unknown trajectory_format 'g2o'"),
+            std::string::npos);
+  EXPECT_NE(load_error("limit", "command: [x, \"{trajectory}\"]\ntime_limit_s: 0\n")
+                .find("time_limit_s must be in (0, 86400]"),
+            std::string::npos);
+  EXPECT_NE(load_error("key", "command: [x, \"{trajectory}\"]\ntimeout: 5\n")
+                .find("unknown key 'timeout'"),
+            std::string::npos);
+  EXPECT_NE(load_error("list", "- a\n- b\n").find("a system file is a YAML map"),
+            std::string::npos);
+}
+
+TEST(SystemSpec, NamesFindShippedFilesAndPathsFindTheirs) {
+  EXPECT_TRUE(is_system_mode("system:open3d_odometry"));
+  EXPECT_FALSE(is_system_mode("full"));
+  EXPECT_EQ(system_of_mode("system:my/own.yaml"), "my/own.yaml");
+  const std::string shipped = find_system_file("open3d_odometry");
+  EXPECT_EQ(fs::path(shipped).filename(), "open3d_odometry.yaml");
+  EXPECT_NO_THROW(load_system_spec(shipped));
+  EXPECT_NO_THROW(load_system_spec(find_system_file("depot_masked")));
+  const std::string own = write_system("own", "command: [x, \"{trajectory}\"]\n");
+  EXPECT_EQ(find_system_file(own), own);
+  EXPECT_THROW(find_system_file("no_such_system"), Error);
+  EXPECT_THROW(find_system_file("/no/such/system.yaml"), Error);
+}
+
+}  // namespace
+}  // namespace depot::system
