@@ -10,11 +10,13 @@
 #include "common/interrupt.h"
 #include "tools/depot/commands.h"
 #include "tools/depot/paths.h"
+#include "tools/harness/slurm_scheduler.h"
 #include "tools/harness/sweep_jobs.h"
 #include "tools/harness/sweep_plan.h"
 #include "tools/harness/sweep_report.h"
 #include "tools/harness/sweep_runner.h"
 #include "tools/harness/sweep_spec.h"
+#include "tools/harness/sweep_status.h"
 #include "tools/system/system_spec.h"
 
 #include "sim/scenario/scenario_loader.h"
@@ -33,6 +35,8 @@ struct SweepArgs {
   bool keep_data = false, plan_only = false, quiet = false;
   std::vector<std::string> figures;
   std::string output;
+  std::string scheduler = "local";
+  harness::SlurmOptions slurm;
 };
 
 std::string self_program() {
@@ -71,7 +75,20 @@ void execute(const harness::SweepPlan& plan, const harness::SweepLayout& layout,
   options.program = self_program();
   options.workers = a.workers;
   options.progress = !a.quiet;
-  const harness::SweepRunResult r = harness::run_sweep(plan, layout, options, interrupt_flag());
+  harness::SweepRunResult r;
+  if (a.scheduler == "slurm") {
+    const harness::SlurmRunResult s =
+        harness::run_sweep_on_slurm(plan, layout, options, a.slurm, interrupt_flag());
+    if (s.detached) {
+      std::printf(
+          "submitted; follow it with `depot sweep status %s`, then `depot sweep report %s`\n",
+          layout.root.c_str(), layout.root.c_str());
+      return;
+    }
+    r = s.run;
+  } else {
+    r = harness::run_sweep(plan, layout, options, interrupt_flag());
+  }
   if (r.interrupted)
     fail(layout.root,
          "sweep interrupted; finished runs are kept, resume with `depot sweep resume " +
@@ -151,6 +168,33 @@ void add_execution_options(CLI::App* cmd, SweepArgs& a) {
       ->delimiter(',')
       ->default_str("orb and full at the last level, seed 1");
   cmd->add_flag("-q,--quiet", a.quiet, "No progress lines (the table and report still print)");
+  cmd->add_option("--scheduler", a.scheduler,
+                  "local (a process pool of -j workers) or slurm (job arrays through sbatch; the "
+                  "folder and depot must be on a filesystem every node sees)")
+      ->check(CLI::IsMember({"local", "slurm"}));
+  const std::string group = "Slurm (--scheduler slurm)";
+  cmd->add_option("--partition", a.slurm.partition, "Slurm partition (default: the cluster's)")
+      ->group(group);
+  cmd->add_option("--account", a.slurm.account, "Slurm account to charge")->group(group);
+  cmd->add_option("--time", a.slurm.time_limit, "Time limit per job, e.g. 30 or 1:00:00")
+      ->group(group);
+  cmd->add_option("--mem", a.slurm.memory, "Memory per job, e.g. 4G")->group(group);
+  cmd->add_option("--cpus-per-task", a.slurm.cpus_per_task, "CPUs per job (0: the cluster's)")
+      ->check(CLI::Range(0, 1024))
+      ->group(group);
+  cmd->add_option("--sbatch-arg", a.slurm.sbatch_args,
+                  "An extra sbatch option, as one word (repeatable), e.g. --sbatch-arg=--qos=low")
+      ->allow_extra_args(false)
+      ->group(group);
+  cmd->add_option("--retries", a.slurm.retries, "Further attempts of a failed job")
+      ->check(CLI::Range(0, 10))
+      ->group(group);
+  cmd->add_flag("--detach", a.slurm.detach,
+                "Submit and return; `depot sweep status` follows it, Ctrl-C cancels nothing")
+      ->group(group);
+  cmd->add_option("--poll", a.slurm.poll_seconds, "Seconds between looks at the queue")
+      ->check(CLI::Range(0.1, 600.0))
+      ->group(group);
 }
 
 }  // namespace
@@ -198,6 +242,23 @@ void register_sweep_commands(CLI::App& app) {
       std::printf("%s: %s ATE %.4f m precision %.3f recall %.3f, %.1f s\n", j.id.c_str(),
                   r.ok ? "ok" : r.error.c_str(), r.ate_rmse, r.precision, r.recall, r.seconds);
     }
+  });
+
+  auto status_folder = std::make_shared<std::string>();
+  CLI::App* status = group->add_subcommand(
+      "status", "How many jobs are done, queued, running or failed (also while on Slurm)");
+  status->add_option("folder", *status_folder, "Sweep folder")->required();
+  status->callback([status_folder] {
+    const harness::SweepLayout layout{*status_folder};
+    const harness::SweepPlan plan = harness::make_sweep_plan(harness::read_spec(layout));
+    const harness::SweepStatus s = harness::read_sweep_status(plan, layout);
+    std::printf("%s: %zu jobs: %zu done", layout.root.c_str(), s.jobs, s.done);
+    if (s.on_slurm) std::printf(", %zu running, %zu pending in Slurm", s.running, s.pending);
+    std::printf(", %zu failed, %zu not queued\n", s.failed, s.not_queued);
+    if (!s.queue_error.empty())
+      std::printf("(the Slurm queue could not be read: %s)\n", s.queue_error.c_str());
+    for (const auto& id : s.failed_jobs)
+      std::printf("failed: %s (log: %s)\n", id.c_str(), layout.log_file(id).c_str());
   });
 
   auto report_args = std::make_shared<SweepArgs>();

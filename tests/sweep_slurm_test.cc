@@ -1,0 +1,291 @@
+// `depot sweep --scheduler slurm` against a real Slurm (label `cluster`;
+// tools/slurm/ci-cluster-test.sh starts a single-node one and sets
+// DEPOT_SLURM=1). Without a reachable cluster the tests skip, unless
+// DEPOT_SLURM=1 says one must be there. The sweep through Slurm gives the
+// local pool's records to the last digit; a cancelled task is resumed
+// without rewriting a record; a failing job is retried, then reported; bad
+// input is one error line with nothing submitted.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/support/render_helpers.h"
+#include "tools/harness/command_output.h"
+#include "tools/harness/slurm_submission.h"
+
+namespace fs = std::filesystem;
+
+namespace depot {
+namespace {
+
+const fs::path kRoot = fs::path(DEPOT_BINARY_DIR) / "sweep_slurm_test_scratch";
+// 2 scenarios x 2 modes x 2 seeds, short and small, synchronous mapping (reproducible).
+const std::string kGrid =
+    "depot_walking_xyz depot_sitting_static --modes orb,full --seeds 2 --frames 10 --width 160 "
+    "--mapping sync";
+
+bool cluster_required() {
+  const char* v = std::getenv("DEPOT_SLURM");
+  return v && std::string(v) == "1";
+}
+
+bool cluster_reachable() {
+  if (!harness::find_on_path("sinfo")) return false;
+  try {
+    return harness::run_for_output({"sinfo", "-h", "-o", "%T"}).exit_code == 0;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+#define REQUIRE_CLUSTER()                                                                   \
+  do {                                                                                      \
+    if (!cluster_reachable()) {                                                             \
+      if (cluster_required()) FAIL() << "DEPOT_SLURM=1 but no Slurm cluster answers sinfo"; \
+      GTEST_SKIP() << "no Slurm cluster reachable (sinfo); tools/slurm/ci-cluster-test.sh " \
+                      "starts a local one";                                                 \
+    }                                                                                       \
+  } while (0)
+
+fs::path fresh(const std::string& name) {
+  const fs::path p = kRoot / name;
+  fs::remove_all(p);
+  fs::create_directories(kRoot);
+  return p;
+}
+
+std::vector<fs::path> run_records(const fs::path& sweep) {
+  std::vector<fs::path> out;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(sweep / "runs", ec))
+    if (fs::is_regular_file(e.path() / "result.json")) out.push_back(e.path() / "result.json");
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// A record without the wall-clock figures (at any depth), which differ from run to run.
+void erase_timing(nlohmann::json& j) {
+  if (!j.is_object()) return;
+  for (const char* key : {"seconds", "median_frame_ms", "rejection_ms"}) j.erase(key);
+  for (auto& [key, value] : j.items()) erase_timing(value);
+}
+
+nlohmann::json without_timing(const fs::path& record) {
+  std::ifstream in(record);
+  nlohmann::json j = nlohmann::json::parse(in);
+  erase_timing(j);
+  return j;
+}
+
+size_t error_lines(const std::string& output) {
+  size_t n = 0;
+  std::istringstream in(output);
+  for (std::string line; std::getline(in, line);) n += line.rfind("depot: error:", 0) == 0;
+  return n;
+}
+
+size_t lines(const std::string& output) {
+  size_t n = 0;
+  std::istringstream in(output);
+  for (std::string line; std::getline(in, line);) n += !line.empty();
+  return n;
+}
+
+// Our tasks still in the queue.
+size_t queued(const std::string& name) {
+  const auto o = harness::run_for_output({"squeue", "--me", "-h", "-r", "-n", name, "-o", "%i"});
+  return lines(o.out);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+TEST(SweepSlurm, SameRecordsAsTheLocalPool) {
+  REQUIRE_CLUSTER();
+  const fs::path local = fresh("local"), slurm = fresh("slurm");
+  auto t0 = std::chrono::steady_clock::now();
+  const test::DepotResult a = test::depot("sweep run " + kGrid + " -o " + local.string() + " -j 2");
+  const double local_s = seconds_since(t0);
+  ASSERT_EQ(a.code, 0) << a.output;
+  t0 = std::chrono::steady_clock::now();
+  const test::DepotResult b = test::depot("sweep run " + kGrid + " -o " + slurm.string() +
+                                          " --scheduler slurm --partition debug --poll 0.5");
+  const double slurm_s = seconds_since(t0);
+  ASSERT_EQ(b.code, 0) << b.output;
+  std::printf("wall time: local pool (-j 2) %.1f s, Slurm %.1f s\n", local_s, slurm_s);
+  EXPECT_NE(b.output.find("submitted to Slurm"), std::string::npos) << b.output;
+  EXPECT_NE(b.output.find("report: "), std::string::npos) << b.output;
+
+  const auto local_records = run_records(local), slurm_records = run_records(slurm);
+  ASSERT_EQ(local_records.size(), 8u) << a.output;
+  ASSERT_EQ(slurm_records.size(), 8u) << b.output;
+  for (size_t i = 0; i < local_records.size(); ++i) {
+    ASSERT_EQ(local_records[i].parent_path().filename(), slurm_records[i].parent_path().filename());
+    // dump() prints doubles round-trip exact: equal text is equal to the last digit.
+    EXPECT_EQ(without_timing(local_records[i]).dump(), without_timing(slurm_records[i]).dump())
+        << local_records[i];
+  }
+  // The tables are made of those records (ATE, RPE, rejection): equal too.
+  for (const char* table :
+       {"table2_ablation.csv", "table3_ate_vs_orb.csv", "table4_rpe_vs_orb.csv", "rejection.csv"}) {
+    std::ifstream x(local / "report" / table), y(slurm / "report" / table);
+    std::stringstream sx, sy;
+    sx << x.rdbuf();
+    sy << y.rdbuf();
+    EXPECT_EQ(sx.str(), sy.str()) << table;
+  }
+  const test::DepotResult status = test::depot("sweep status " + slurm.string());
+  EXPECT_NE(status.output.find("12 jobs: 12 done"), std::string::npos) << status.output;
+}
+
+// Starts `depot args...` in the background, its output in `log`.
+pid_t start_depot(const std::string& args, const fs::path& log) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const std::string cmd = test::depot_binary() + " " + args + " > " + log.string() + " 2>&1";
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  return pid;
+}
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(SweepSlurm, CancelledTaskThenResumeWritesNoRecordTwice) {
+  REQUIRE_CLUSTER();
+  const fs::path sweep = fresh("cancel");
+  const pid_t pid =
+      start_depot("sweep run " + kGrid + " -o " + sweep.string() + " --scheduler slurm --poll 0.5",
+                  kRoot / "cancel.log");
+  // The first task seen running is cancelled, as a user's scancel would.
+  const harness::SweepLayout layout{sweep.string()};
+  std::string cancelled;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(3);
+  while (cancelled.empty() && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    const auto submission = harness::read_submission(layout);
+    if (!submission) continue;
+    for (const auto& array : submission->arrays) {
+      const auto o = harness::run_for_output(
+          {"squeue", "--me", "-h", "-r", "-t", "RUNNING", "-j", array.job_id, "-o", "%i"});
+      std::istringstream in(o.out);
+      if (std::getline(in, cancelled) && !cancelled.empty()) break;
+      cancelled.clear();
+    }
+  }
+  ASSERT_FALSE(cancelled.empty()) << read(kRoot / "cancel.log");
+  harness::run_for_output({"scancel", cancelled});
+  int status = 0;
+  waitpid(pid, &status, 0);
+  const std::string first = read(kRoot / "cancel.log");
+  ASSERT_TRUE(WIFEXITED(status)) << first;
+  EXPECT_NE(WEXITSTATUS(status), 0) << "a cancelled task leaves the sweep unfinished\n" << first;
+  EXPECT_NE(first.find("FAILED"), std::string::npos) << first;
+
+  std::map<fs::path, fs::file_time_type> stamps;
+  for (const auto& r : run_records(sweep)) stamps[r] = fs::last_write_time(r);
+  ASSERT_LT(stamps.size(), 8u) << "the cancelled task's run(s) must be missing\n" << first;
+
+  const test::DepotResult resumed =
+      test::depot("sweep resume " + sweep.string() + " --scheduler slurm --poll 0.5");
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  EXPECT_EQ(run_records(sweep).size(), 8u) << resumed.output;
+  for (const auto& [path, stamp] : stamps)
+    EXPECT_EQ(fs::last_write_time(path), stamp) << path << " was written twice";
+  EXPECT_EQ(resumed.output.find(" 0 already finished"), std::string::npos) << resumed.output;
+  for (const auto& e : fs::recursive_directory_iterator(sweep))
+    EXPECT_EQ(e.path().string().find(".partial-"), std::string::npos) << e.path();
+}
+
+TEST(SweepSlurm, FailingJobIsRetriedThenReported) {
+  REQUIRE_CLUSTER();
+  const fs::path sweep = fresh("failing");
+  const std::string grid =
+      "depot_walking_xyz --modes orb,full --seeds 1 --frames 10 --width 160 --mapping sync -o " +
+      sweep.string();
+  // A file where the full run's folder goes: that job fails every attempt.
+  ASSERT_EQ(test::depot("sweep run " + grid + " --plan-only").code, 0);
+  const std::string bad = "depot_walking_xyz__s1__full";
+  fs::create_directories(sweep / "runs");
+  std::ofstream(sweep / "runs" / bad) << "in the way\n";
+
+  const test::DepotResult r =
+      test::depot("sweep run " + grid + " --scheduler slurm --retries 1 --poll 0.5");
+  EXPECT_NE(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find(bad + ": FAILED"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1 job(s) failed"), std::string::npos) << r.output;
+  const std::string log = read(sweep / "logs" / (bad + ".log"));
+  EXPECT_NE(log.find("attempt 1 of 2 exited"), std::string::npos) << log;
+  EXPECT_NE(log.find("attempt 2 of 2 exited"), std::string::npos) << log;
+  const harness::SweepLayout layout{sweep.string()};
+  ASSERT_TRUE(fs::exists(harness::failure_record_path(layout, bad)));
+  const std::string failure = read(harness::failure_record_path(layout, bad));
+  EXPECT_NE(failure.find("attempt 2 of 2"), std::string::npos) << failure;
+  EXPECT_TRUE(fs::exists(sweep / "runs" / "depot_walking_xyz__s1__orb" / "result.json"));
+  const test::DepotResult status = test::depot("sweep status " + sweep.string());
+  EXPECT_NE(status.output.find("1 failed"), std::string::npos) << status.output;
+  EXPECT_NE(status.output.find("failed: " + bad), std::string::npos) << status.output;
+}
+
+TEST(SweepSlurm, BadInputIsOneErrorLineAndSubmitsNothing) {
+  const fs::path sweep = fresh("bad");
+  const std::string grid =
+      "sweep run depot_walking_xyz --modes orb --seeds 1 --frames 10 "
+      "--width 160 -o " +
+      sweep.string() + " --scheduler slurm";
+  const harness::SweepLayout layout{sweep.string()};
+  {  // No Slurm clients on PATH.
+    const char* old = std::getenv("PATH");
+    const std::string saved = old ? old : "";
+    setenv("PATH", "/nonexistent", 1);
+    const test::DepotResult r = test::depot(grid);
+    setenv("PATH", saved.c_str(), 1);
+    EXPECT_NE(r.code, 0);
+    EXPECT_EQ(lines(r.output), 1u) << r.output;
+    EXPECT_EQ(error_lines(r.output), 1u) << r.output;
+    EXPECT_NE(r.output.find("sbatch not found on PATH"), std::string::npos) << r.output;
+    EXPECT_FALSE(harness::read_submission(layout));
+  }
+  if (!cluster_reachable()) {
+    if (cluster_required()) FAIL() << "DEPOT_SLURM=1 but no Slurm cluster answers sinfo";
+    GTEST_SKIP() << "no Slurm cluster reachable: only the missing-sbatch case ran";
+  }
+  const std::string name = "depot-sweep:" + sweep.filename().string();
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {" --partition nosuch", "no such Slurm partition"},
+           {" --time bogus", "sbatch rejected the submission"},
+           {" --sbatch-arg=--no-such-option", "sbatch rejected the submission"}}) {
+    const test::DepotResult r = test::depot(grid + args);
+    EXPECT_NE(r.code, 0) << args;
+    EXPECT_EQ(lines(r.output), 1u) << args << "\n" << r.output;
+    EXPECT_EQ(error_lines(r.output), 1u) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
+    EXPECT_EQ(queued(name), 0u) << args;
+    EXPECT_FALSE(harness::read_submission(layout)) << args;
+  }
+  // Still resumable: the same sweep then runs.
+  const test::DepotResult ok = test::depot(grid + " --poll 0.5");
+  EXPECT_EQ(ok.code, 0) << ok.output;
+  EXPECT_EQ(run_records(sweep).size(), 1u) << ok.output;
+}
+
+}  // namespace
+}  // namespace depot
