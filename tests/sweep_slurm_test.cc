@@ -215,6 +215,47 @@ TEST(SweepSlurm, CancelledTaskThenResumeWritesNoRecordTwice) {
     EXPECT_EQ(e.path().string().find(".partial-"), std::string::npos) << e.path();
 }
 
+// The local cluster's state folder (tools/slurm/ci-cluster-test.sh exports
+// SLURM_CONF inside it), or "" for another cluster.
+std::string local_cluster_state() {
+  const char* conf = std::getenv("SLURM_CONF");
+  if (!conf) return "";
+  const fs::path state = fs::path(conf).parent_path();
+  return fs::exists(state / "run") ? state.string() : "";
+}
+
+int local_cluster(const std::string& action, const std::string& state) {
+  const std::string script = std::string(DEPOT_SOURCE_DIR) + "/tools/slurm/local-cluster.sh";
+  return harness::run_for_output({script, action, state}).exit_code;
+}
+
+TEST(SweepSlurm, NodeLostWhileJobsWaitThenBackTheSweepCompletes) {
+  REQUIRE_CLUSTER();
+  const std::string state = local_cluster_state();
+  if (state.empty()) GTEST_SKIP() << "needs the local cluster (tools/slurm/ci-cluster-test.sh)";
+  const fs::path sweep = fresh("node_lost");
+  // slurmd stops before the sweep submits: every job waits for the node.
+  ASSERT_EQ(local_cluster("stop-node", state), 0);
+  const pid_t pid =
+      start_depot("sweep run " + kGrid + " -o " + sweep.string() + " --scheduler slurm --poll 0.5",
+                  kRoot / "node_lost.log");
+  const harness::SweepLayout layout{sweep.string()};
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+  while (!harness::read_submission(layout) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  const bool submitted = harness::read_submission(layout).has_value();
+  std::this_thread::sleep_for(std::chrono::seconds(3));
+  EXPECT_EQ(run_records(sweep).size(), 0u) << "no job can run without its node";
+  ASSERT_EQ(local_cluster("start-node", state), 0);  // the node returns
+  int status = 0;
+  waitpid(pid, &status, 0);
+  const std::string log = read(kRoot / "node_lost.log");
+  ASSERT_TRUE(submitted) << log;
+  ASSERT_TRUE(WIFEXITED(status)) << log;
+  EXPECT_EQ(WEXITSTATUS(status), 0) << log;
+  EXPECT_EQ(run_records(sweep).size(), 8u) << log;
+}
+
 TEST(SweepSlurm, FailingJobIsRetriedThenReported) {
   REQUIRE_CLUSTER();
   const fs::path sweep = fresh("failing");

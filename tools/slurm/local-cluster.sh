@@ -6,6 +6,8 @@
 #   tools/slurm/local-cluster.sh start  STATE_DIR   # munged, slurmctld, slurmd; waits for an idle node
 #   tools/slurm/local-cluster.sh status STATE_DIR   # daemons alive, sinfo
 #   tools/slurm/local-cluster.sh stop   STATE_DIR   # stops all three and waits until they are gone
+#   tools/slurm/local-cluster.sh stop-node  STATE_DIR   # slurmd alone (a node lost; jobs wait)
+#   tools/slurm/local-cluster.sh start-node STATE_DIR   # slurmd again (the node returns)
 #
 # Everything lives in STATE_DIR (slurm.conf, munge key and socket, spool,
 # state, logs, pid files), so nothing system-wide is read or overwritten.
@@ -17,7 +19,7 @@
 set -euo pipefail
 
 usage() {
-  echo "usage: $0 start|stop|status STATE_DIR" >&2
+  echo "usage: $0 start|stop|status|stop-node|start-node STATE_DIR" >&2
   exit 2
 }
 [ $# -eq 2 ] || usage
@@ -106,6 +108,8 @@ wait_for() {  # seconds, description, command...
   return 1
 }
 
+slurmd_alive() { [ -n "$(pid_of slurmd)" ]; }
+
 node_idle() { [ "$(sinfo -h -N -o %T 2>/dev/null)" = "idle" ]; }
 
 stop_daemons() {
@@ -168,6 +172,20 @@ case "$action" in
   stop)
     stop_daemons
     echo "local-cluster: stopped"
+    ;;
+  stop-node)
+    pid="$(pid_of slurmd)"
+    if [ -n "$pid" ]; then
+      kill -TERM "$pid" 2>/dev/null || true
+      wait_for 20 "slurmd stopping" sh -c "! kill -0 $pid 2>/dev/null" || kill -KILL "$pid" || true
+    fi
+    echo "local-cluster: node stopped (slurmd)"
+    ;;
+  start-node)
+    [ -n "$(pid_of slurmctld)" ] || { echo "local-cluster: slurmctld is not running (start first)" >&2; exit 1; }
+    [ -n "$(pid_of slurmd)" ] || slurmd -f "$conf"
+    wait_for 20 "slurmd starting" slurmd_alive || exit 1
+    echo "local-cluster: node started (slurmd)"
     ;;
   status)
     up=0
