@@ -10,10 +10,10 @@
 #include <fstream>
 
 #include "common/error.h"
+#include "common/text_records.h"
 #include "common/tum_io.h"
 #include "common/yaml_file.h"
 #include "slam/detect/class_names.h"
-#include "slam/detect/text_records.h"
 
 namespace depot::slam {
 namespace {
