@@ -1,34 +1,19 @@
 #include "eval/instance_classes.h"
 
-#include <filesystem>
-#include <fstream>
-
-#include <nlohmann/json.hpp>
-
 #include "common/error.h"
 
 namespace depot::eval {
 
-std::map<int, InstanceInfo> read_instances(const std::string& dataset) {
-  const std::string path = (std::filesystem::path(dataset) / "objects.json").string();
-  std::ifstream in(path);
-  if (!in) fail(path, "cannot open file (the dataset's objects; not a simulated dataset?)");
-  std::map<int, InstanceInfo> instances;
-  try {
-    const nlohmann::json doc = nlohmann::json::parse(in);
-    for (const nlohmann::json& o : doc.at("instances"))
-      instances[o.at("id").get<int>()] = {o.at("class").get<std::string>(),
-                                          o.value("asset", std::string())};
-  } catch (const nlohmann::json::exception& e) {
-    fail(path, std::string("not a dataset's objects file: ") + e.what());
-  }
-  return instances;
+std::map<int, std::string> instance_classes(const dataset::ObjectsFile& objects) {
+  std::map<int, std::string> classes;
+  for (const dataset::ObjectRecord& o : objects.objects) classes[o.id] = o.class_name;
+  return classes;
 }
 
-std::map<int, std::string> read_instance_classes(const std::string& dataset) {
-  std::map<int, std::string> classes;
-  for (const auto& [id, info] : read_instances(dataset)) classes[id] = info.class_name;
-  return classes;
+std::map<int, std::string> instance_assets(const dataset::ObjectsFile& objects) {
+  std::map<int, std::string> assets;
+  for (const dataset::ObjectRecord& o : objects.objects) assets[o.id] = o.asset;
+  return assets;
 }
 
 std::set<int> instances_of(const std::map<int, std::string>& classes,

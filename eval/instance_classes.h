@@ -1,26 +1,21 @@
 #pragma once
-// Which class each instance of a simulated dataset belongs to (objects.json),
-// and the mask of a class's pixels in a label image (labels/, 16-bit ids).
+// Which class each instance of a simulated dataset belongs to (its
+// objects.json, read by dataset/objects.h), and the mask of a class's pixels
+// in a label image (labels/, 16-bit ids).
 #include <map>
 #include <set>
 #include <string>
 
 #include <opencv2/core.hpp>
 
+#include "dataset/objects.h"
+
 namespace depot::eval {
 
-// What objects.json says of an instance.
-struct InstanceInfo {
-  std::string class_name;
-  std::string model;  // catalogue asset it is drawn from ("asset"), or ""
-};
-
-// Instance id -> its class and model, from `dataset`/objects.json. Throws
-// depot::Error naming the file when it is missing or malformed.
-std::map<int, InstanceInfo> read_instances(const std::string& dataset);
-
-// Instance id -> class (read_instances, classes only).
-std::map<int, std::string> read_instance_classes(const std::string& dataset);
+// Instance id -> its class.
+std::map<int, std::string> instance_classes(const dataset::ObjectsFile& objects);
+// Instance id -> the catalogue asset it is drawn from ("" for primitives).
+std::map<int, std::string> instance_assets(const dataset::ObjectsFile& objects);
 
 // The ids of the instances of `class_name`.
 std::set<int> instances_of(const std::map<int, std::string>& classes,

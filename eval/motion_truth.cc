@@ -2,64 +2,44 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "common/error.h"
 #include "common/fast_circle.h"
-#include "common/png_codec.h"
-#include "common/tum_io.h"
+#include "dataset/dataset_files.h"
+#include "dataset/label_images.h"
+#include "dataset/object_poses.h"
 
 namespace fs = std::filesystem;
 
 namespace depot::eval {
 namespace {
 
+// Frames are joined across files by their written timestamp.
 std::string stamp_key(double t) {
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.6f", t);
-  return buf;
+  return dataset::format_timestamp(t);
 }
 
 }  // namespace
 
 bool MotionTruth::available(const std::string& dataset) {
-  return fs::is_regular_file(fs::path(dataset) / "labels.txt") &&
-         fs::is_regular_file(fs::path(dataset) / "object_poses.txt");
+  return dataset::has_label_list(dataset) &&
+         fs::is_regular_file(dataset::dataset_file(dataset, dataset::kObjectPosesFile));
 }
 
 MotionTruth::MotionTruth(const std::string& dataset) : root_(dataset) {
   if (!available(dataset))
     fail(dataset, "no ground-truth labels (labels.txt, object_poses.txt): not a simulated dataset");
-  for (const auto& f : read_file_list((fs::path(dataset) / "labels.txt").string()))
+  for (const StampedFile& f : dataset::read_label_list(dataset))
     label_files_[stamp_key(f.timestamp)] = f.path;
-  const std::string poses = (fs::path(dataset) / "object_poses.txt").string();
-  std::ifstream in(poses);
-  std::string line;
-  int line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream s(line);
-    std::string stamp;
-    int id = 0, moving = 0;
-    double v[7];
-    if (!(s >> stamp >> id >> v[0] >> v[1] >> v[2] >> v[3] >> v[4] >> v[5] >> v[6] >> moving))
-      fail(poses + ":" + std::to_string(line_no),
-           "expected 'timestamp id tx ty tz qx qy qz qw moving'");
-    if (moving) moving_ids_[stamp].insert(id);
-  }
+  for (const dataset::ObjectPoseRecord& r : dataset::read_object_poses(dataset))
+    if (r.moving) moving_ids_[stamp_key(r.timestamp)].insert(r.id);
 }
 
 cv::Mat MotionTruth::load_labels(const std::string& key) const {
   auto it = label_files_.find(key);
   if (it == label_files_.end()) fail(root_, "no label image for timestamp " + key);
-  const std::string path = (fs::path(root_) / it->second).string();
-  cv::Mat labels = read_image(path, ImageRead::kUnchanged);
-  if (labels.type() != CV_16UC1) fail(path, "label image is not 16-bit single-channel");
-  return labels;
+  return dataset::read_label_image(root_, it->second);
 }
 
 cv::Mat MotionTruth::label_image(double timestamp) const {

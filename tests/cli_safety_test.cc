@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "dataset/dataset_info.h"
 #include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
 
@@ -80,7 +81,7 @@ TEST(NoDataLost, OverwriteReplacesADatasetButNotAUserFileInIt) {
   const DepotResult again =
       depot("sim render depot_static --frames 3 --width 64 -q --overwrite -o " + data);
   ASSERT_EQ(again.code, 0) << again.output;
-  EXPECT_NE(read_text(data + "/info.json").find("\"frames\": 3"), std::string::npos);
+  EXPECT_EQ(dataset::read_info(data).value().frames, 3);
   // A user's file inside a dataset makes it theirs: refused, file kept.
   std::ofstream(data + "/notes.txt") << "my notes";
   expect_one_error_line(depot(std::string(kTinyRender) + " --overwrite -o " + data), "notes.txt");

@@ -7,9 +7,11 @@
 #include <vector>
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
+#include "dataset/boxes.h"
+#include "dataset/dataset_files.h"
+#include "dataset/dataset_info.h"
 #include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
 
@@ -63,21 +65,20 @@ TEST(CameraCover, CoveredFramesAreBlackWithoutDepthOrInstances) {
         1e-4)
         << "frame " << i;
   // No boxes in covered frames.
-  std::ifstream boxes(d.root + "/boxes.txt");
-  std::string line;
-  int boxed = 0;
-  while (std::getline(boxes, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    const double stamp = std::stod(line.substr(0, line.find(' ')));
-    ++boxed;
-    for (size_t i = first; i <= last; ++i) EXPECT_NE(stamp, d.frames[i].rgb_timestamp) << line;
-  }
-  EXPECT_GT(boxed, 0) << "the uncovered frames do have boxes (else the check above is empty)";
-  const nlohmann::json info = nlohmann::json::parse(std::ifstream(d.root + "/info.json"));
-  EXPECT_EQ(info.at("covered_frames"),
-            nlohmann::json::array({nlohmann::json::array({first, last})}))
-      << info.dump();
-  EXPECT_EQ(info.at("camera_cover"), nlohmann::json::parse("[[0.09, 0.19]]")) << info.dump();
+  const std::vector<dataset::BoxRecord> boxes = dataset::read_boxes(d.root);
+  for (const dataset::BoxRecord& b : boxes)
+    for (size_t i = first; i <= last; ++i)
+      EXPECT_NE(dataset::format_timestamp(b.timestamp),
+                dataset::format_timestamp(d.frames[i].rgb_timestamp))
+          << dataset::format_box(b);
+  EXPECT_FALSE(boxes.empty())
+      << "the uncovered frames do have boxes (else the check above is empty)";
+  const std::optional<dataset::DatasetInfo> info = dataset::read_info(d.root);
+  ASSERT_TRUE(info);
+  EXPECT_EQ(
+      info->covered_frames,
+      (std::vector<std::pair<long, long>>{{static_cast<long>(first), static_cast<long>(last)}}));
+  EXPECT_EQ(info->camera_cover, (std::vector<std::pair<double, double>>{{0.09, 0.19}}));
 }
 
 TEST(CameraCover, SameScenarioAndSeedGiveTheSameBytes) {

@@ -9,6 +9,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "dataset/boxes.h"
+#include "dataset/dataset_files.h"
 #include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
 
@@ -118,27 +120,18 @@ TEST(SimLabels, SittingPeopleMoveSlightlyInPlace) {
 TEST(SimLabels, BoxesAreTheTightBoundsOfTheMasks) {
   std::string root = render_small({"depot_walking_xyz", 20, 160, true, std::nullopt, true});
   Dataset d = read_dataset(root);
-  std::ifstream in(root + "/boxes.txt");
-  std::string line;
   int boxes = 0;
   std::map<std::string, size_t> frame_of;
-  for (size_t i = 0; i < d.frames.size(); ++i) {
-    char buf[64];
-    std::snprintf(buf, sizeof(buf), "%.6f", d.frames[i].rgb_timestamp);
-    frame_of[buf] = i;
-  }
-  while (std::getline(in, line)) {
-    if (line[0] == '#') continue;
-    std::istringstream s(line);
-    std::string stamp, cls;
-    int id, x1, y1, x2, y2, pixels, moving;
-    s >> stamp >> id >> cls >> x1 >> y1 >> x2 >> y2 >> pixels >> moving;
-    cv::Mat labels = d.labels_image(frame_of.at(stamp));
-    cv::Mat mask = labels == id;
+  for (size_t i = 0; i < d.frames.size(); ++i)
+    frame_of[dataset::format_timestamp(d.frames[i].rgb_timestamp)] = i;
+  for (const dataset::BoxRecord& b : dataset::read_boxes(root)) {
+    const std::string line = dataset::format_box(b);
+    cv::Mat labels = d.labels_image(frame_of.at(dataset::format_timestamp(b.timestamp)));
+    cv::Mat mask = labels == b.id;
     cv::Rect r = cv::boundingRect(mask);
-    EXPECT_EQ(r, cv::Rect(x1, y1, x2 - x1, y2 - y1)) << line;
-    EXPECT_EQ(cv::countNonZero(mask), pixels) << line;
-    EXPECT_EQ(d.objects.at(id).class_name, cls);
+    EXPECT_EQ(r, cv::Rect(b.x1, b.y1, b.x2 - b.x1, b.y2 - b.y1)) << line;
+    EXPECT_EQ(cv::countNonZero(mask), b.visible_pixels) << line;
+    EXPECT_EQ(d.objects.at(b.id).class_name, b.class_name);
     ++boxes;
   }
   EXPECT_GT(boxes, 20);

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "dataset/dataset_info.h"
 #include "sim/camera/camera_motion.h"
 #include "sim/render/renderer.h"
 #include "sim/scenario/scenario_loader.h"
@@ -118,7 +119,7 @@ TEST(SimMeshProps, PhysicsAndTruthDoNotChange) {
   EXPECT_GT(translation_between(d.object_poses.back().at(pushed).pose,
                                 d.object_poses.front().at(pushed).pose),
             0.3);
-  EXPECT_NE(file_text(mesh + "/info.json").find("\"props_style\": \"mesh\""), std::string::npos);
+  EXPECT_EQ(dataset::read_info(mesh).value().props_style, "mesh");
 }
 
 TEST(SimMeshProps, SameSeedGivesByteIdenticalDatasetsAndMeshIsTheDefault) {

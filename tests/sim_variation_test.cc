@@ -8,11 +8,11 @@
 #include <map>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
-
 #include <gtest/gtest.h>
 
 #include "common/testing/error_of.h"
+#include "dataset/object_poses.h"
+#include "dataset/objects.h"
 #include "sim/actors/actor_variation.h"
 #include "sim/pipeline/export_truth.h"
 #include "sim/scenario/scenario_loader.h"
@@ -48,24 +48,16 @@ Truth truth(const std::string& scenario, uint64_t seed,
   t.groundtruth = read_file(request.dataset.output + "/groundtruth.txt");
   t.objects = read_file(request.dataset.output + "/objects.json");
   t.info = read_file(request.dataset.output + "/info.json");
-  // Names from objects.json, positions from the first frame's rows of
-  // object_poses.txt ("timestamp id tx ty tz qx qy qz qw moving").
+  // Names from objects.json, positions from the first frame's records of
+  // object_poses.txt.
   std::map<int, std::string> names;
-  const nlohmann::json objects = nlohmann::json::parse(t.objects);
-  for (const auto& o : objects.at("instances"))
-    names[o.at("id").get<int>()] = o.at("name").get<std::string>();
-  std::istringstream rows(t.object_poses);
-  std::string first_stamp;
-  for (std::string line; std::getline(rows, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream row(line);
-    std::string stamp;
-    int id = 0;
-    Eigen::Vector3d p;
-    row >> stamp >> id >> p.x() >> p.y() >> p.z();
-    if (first_stamp.empty()) first_stamp = stamp;
-    if (stamp != first_stamp) break;
-    t.first_positions[names.at(id)] = p;
+  for (const dataset::ObjectRecord& o : dataset::read_objects(request.dataset.output).objects)
+    names[o.id] = o.name;
+  const std::vector<dataset::ObjectPoseRecord> poses =
+      dataset::read_object_poses(request.dataset.output);
+  for (const dataset::ObjectPoseRecord& r : poses) {
+    if (r.timestamp != poses.front().timestamp) break;
+    t.first_positions[names.at(r.id)] = r.pose.translation();
   }
   return t;
 }

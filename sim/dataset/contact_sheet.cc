@@ -10,6 +10,7 @@
 #include "common/png_codec.h"
 #include "common/staged_file.h"
 #include "common/tum_io.h"
+#include "dataset/label_images.h"
 
 namespace fs = std::filesystem;
 
@@ -61,9 +62,9 @@ void write_contact_sheet(const std::string& dataset, const std::string& output,
   if (!fs::is_directory(root)) fail(dataset, "not a dataset folder");
   if (!fs::is_regular_file(root / "associations.txt")) fail(dataset, "associations.txt missing");
   auto assoc = read_associations((root / "associations.txt").string());
-  const bool has_labels = fs::is_regular_file(root / "labels.txt");
+  const bool has_labels = dataset::has_label_list(dataset);
   std::vector<StampedFile> labels;
-  if (has_labels) labels = read_file_list((root / "labels.txt").string());
+  if (has_labels) labels = dataset::read_label_list(dataset);
 
   const int rows = std::max(1, std::min<int>(options.rows, static_cast<int>(assoc.size())));
   std::vector<cv::Mat> lines;
@@ -74,8 +75,7 @@ void write_contact_sheet(const std::string& dataset, const std::string& output,
     if (depth.type() != CV_16U) fail((root / assoc[i].depth_path).string(), "depth is not 16-bit");
     std::vector<cv::Mat> tiles{rgb, colour_depth(depth)};
     if (has_labels && i < labels.size()) {
-      cv::Mat ids = read_image((root / labels[i].path).string(), ImageRead::kUnchanged);
-      tiles.push_back(colour_labels(ids));
+      tiles.push_back(colour_labels(dataset::read_label_image(dataset, labels[i].path)));
     }
     for (auto& t : tiles) {
       double s = static_cast<double>(options.thumb_width) / t.cols;

@@ -5,13 +5,13 @@
 #include <filesystem>
 #include <fstream>
 
-#include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
-
 #include "common/error.h"
 #include "common/png_codec.h"
 #include "common/rng.h"
 #include "common/tum_io.h"
+#include "dataset/boxes.h"
+#include "dataset/dataset_files.h"
+#include "dataset/label_images.h"
 #include "sim/dataset/boxes.h"
 #include "sim/dataset/truth_files.h"
 #include "sim/sensor/kinect_model.h"
@@ -20,11 +20,7 @@ namespace fs = std::filesystem;
 
 namespace depot::sim {
 
-std::string format_timestamp(double t) {
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.6f", t);
-  return buf;
-}
+using dataset::format_timestamp;
 
 namespace {
 
@@ -35,10 +31,11 @@ const size_t kMaxQueued = 6;
 const OutputKind& simulator_output_kind() {
   static const OutputKind kind{
       "dataset",
-      "info.json",
-      {"rgb", "depth", "labels", "boxes_yolo", "yolo", "rgb.txt", "depth.txt", "associations.txt",
-       "groundtruth.txt", "labels.txt", "object_poses.txt", "boxes.txt", "classes.txt",
-       "calibration.yaml", "objects.json", "info.json", "scenario.yaml", "timestamps.txt"}};
+      dataset::kInfoFile,
+      {"rgb", "depth", dataset::kLabelFolder, "boxes_yolo", "yolo", "rgb.txt", "depth.txt",
+       "associations.txt", "groundtruth.txt", dataset::kLabelListFile, dataset::kObjectPosesFile,
+       dataset::kBoxesFile, "classes.txt", "calibration.yaml", dataset::kObjectsFile,
+       dataset::kInfoFile, "scenario.yaml", "timestamps.txt"}};
   return kind;
 }
 
@@ -51,19 +48,14 @@ DatasetWriter::DatasetWriter(const DatasetOptions& options, const Scenario& scen
     fail("--png-level", "must be 0..9");
   dir_ = std::make_unique<StagedDirectory>(options_.output, simulator_output_kind(),
                                            options_.overwrite);
-  for (const char* sub : {"rgb", "depth", "labels", "boxes_yolo"})
+  for (const char* sub : {"rgb", "depth", dataset::kLabelFolder, "boxes_yolo"})
     fs::create_directory(fs::path(dir_->path()) / sub);
-  const std::string header = "# file: '" + scenario_.name + "' (depot-slam simulator)\n";
+  const std::string header = dataset::file_header_line(scenario_.name);
   rgb_txt_ = "# color images\n" + header + "# timestamp filename\n";
   depth_txt_ = "# depth maps\n" + header + "# timestamp filename\n";
-  labels_txt_ = "# instance label images (16-bit instance ids, 0 = none)\n" + header +
-                "# timestamp filename\n";
   gt_txt_ = "# ground truth trajectory (camera-to-world)\n" + header +
             "# timestamp tx ty tz qx qy qz qw\n";
   assoc_txt_.clear();
-  poses_txt_ = object_poses_header() + header + "# timestamp id tx ty tz qx qy qz qw moving\n";
-  boxes_txt_ = "# ground-truth boxes of visible detectable instances, pixels, x2/y2 exclusive\n" +
-               header + "# timestamp id class x1 y1 x2 y2 visible_pixels moving\n";
   for (int i = 0; i < options_.writer_threads; ++i) threads_.emplace_back([this] { worker(); });
 }
 
@@ -89,21 +81,20 @@ void DatasetWriter::add(RenderedFrame frame, const FrameTruth& truth) {
   rgb_txt_ += rs + " rgb/" + rs + ".png\n";
   depth_txt_ += ds + " depth/" + ds + ".png\n";
   assoc_txt_ += rs + " rgb/" + rs + ".png " + ds + " depth/" + ds + ".png\n";
-  labels_txt_ += rs + " labels/" + rs + ".png\n";
+  label_timestamps_.push_back(truth.rgb_timestamp);
   gt_txt_ += format_tum_pose({truth.rgb_timestamp, truth.camera}) + "\n";
   std::vector<bool> moving(instances_.size() + 1, false);
   for (const ObjectState& s : truth.objects) moving[s.id] = s.moving;
-  poses_txt_ += object_pose_lines(truth);
+  for (dataset::ObjectPoseRecord& r : object_pose_records(truth))
+    object_poses_.push_back(std::move(r));
   // Boxes are cheap: compute them here, in frame order.
   std::string yolo;
   for (const InstanceBox& b : instance_boxes(frame.instance, options_.min_box_pixels)) {
     const Instance& inst = instances_[b.id - 1];
     const int cls = classes_.yolo_index(inst.class_name);
     if (cls < 0) continue;
-    char buf[256];
-    std::snprintf(buf, sizeof(buf), "%s %u %s %d %d %d %d %d %d\n", rs.c_str(), b.id,
-                  inst.class_name.c_str(), b.x1, b.y1, b.x2, b.y2, b.pixels, moving[b.id] ? 1 : 0);
-    boxes_txt_ += buf;
+    boxes_.push_back({truth.rgb_timestamp, b.id, inst.class_name, b.x1, b.y1, b.x2, b.y2, b.pixels,
+                      static_cast<bool>(moving[b.id])});
     yolo += yolo_line(cls, b, frame.instance.cols, frame.instance.rows) + "\n";
   }
   yolo_files_.emplace_back(rs, yolo);
@@ -115,7 +106,7 @@ void DatasetWriter::add(RenderedFrame frame, const FrameTruth& truth) {
       covered_frames_.emplace_back(truth.index, truth.index);
   }
 
-  Job job{std::move(frame), rs, ds, truth.index, truth.covered};
+  Job job{std::move(frame), truth.rgb_timestamp, rs, ds, truth.index, truth.covered};
   std::unique_lock<std::mutex> lock(mutex_);
   cv_.wait(lock, [&] { return queue_.size() < kMaxQueued || error_; });
   if (error_) std::rethrow_exception(error_);
@@ -168,8 +159,8 @@ void DatasetWriter::write_job(Job& job, WriterTimings& timings) {
                              PngKind::kColor, level < 0 ? 0 : level);
   timings.bytes += write_png((root / "depth" / (job.stamp_depth + ".png")).string(), depth16,
                              PngKind::kDepth, level < 0 ? 1 : level);
-  timings.bytes += write_png((root / "labels" / (job.stamp_rgb + ".png")).string(),
-                             job.frame.instance, PngKind::kLabels, level < 0 ? 1 : level);
+  timings.bytes += dataset::write_label_image(root.string(), job.rgb_timestamp, job.frame.instance,
+                                              level < 0 ? 1 : level);
   auto t2 = std::chrono::steady_clock::now();
   timings.sensor_ms += std::chrono::duration<double, std::milli>(t1 - t0).count();
   timings.encode_write_ms += std::chrono::duration<double, std::milli>(t2 - t1).count();
@@ -184,9 +175,9 @@ void DatasetWriter::write_text_files() {
   write("depth.txt", depth_txt_);
   write("associations.txt", assoc_txt_);
   write("groundtruth.txt", gt_txt_);
-  write("labels.txt", labels_txt_);
-  write("object_poses.txt", poses_txt_);
-  write("boxes.txt", boxes_txt_);
+  dataset::write_label_list(root.string(), scenario_.name, label_timestamps_);
+  dataset::write_object_poses(root.string(), scenario_.name, object_poses_);
+  dataset::write_boxes(root.string(), scenario_.name, boxes_);
   std::string classes_txt;
   for (const auto& n : classes_.yolo_names()) classes_txt += n + "\n";
   write("classes.txt", classes_txt);
@@ -207,28 +198,17 @@ void DatasetWriter::write_text_files() {
       s.max_depth, s.ideal ? "ideal" : "kinect", s.baseline);
   write("calibration.yaml", calib);
 
-  write("objects.json", objects_json(scenario_.name, instances_, classes_));
-  nlohmann::json info = {{"generator", "depot-slam simulator"},
-                         {"scenario", scenario_.name},
-                         {"description", scenario_.description},
-                         {"seed", scenario_.seed},
-                         {"frames", frames_},
-                         {"dynamic_load", scenario_.dynamic_load},
-                         {"actors_style", scenario_.actors_style},
-                         {"props_style", scenario_.props_style},
-                         {"sensor", s.ideal ? "ideal" : "kinect"},
-                         {"motion", scenario_.motion.type}};
-  info["world_seed"] = scenario_.world_seed();
-  if (!scenario_.camera_cover.empty()) {
-    // Seconds as written, and the frames they cover (first and last index)
-    // for evaluations of relocalisation after the cover.
-    nlohmann::json seconds = nlohmann::json::array(), frames = nlohmann::json::array();
-    for (const CoverInterval& c : scenario_.camera_cover) seconds.push_back({c.start, c.end});
-    for (const auto& [first, last] : covered_frames_) frames.push_back({first, last});
-    info["camera_cover"] = seconds;
-    info["covered_frames"] = frames;
-  }
-  write("info.json", info.dump(1) + "\n");
+  dataset::write_objects(root.string(), objects_file(scenario_.name, instances_, classes_));
+  dataset::DatasetInfo info = scenario_info(scenario_, "depot-slam simulator");
+  info.description = scenario_.description;
+  info.frames = frames_;
+  info.sensor = s.ideal ? "ideal" : "kinect";
+  // Seconds as written, and the frames they cover (first and last index)
+  // for evaluations of relocalisation after the cover.
+  for (const CoverInterval& c : scenario_.camera_cover)
+    info.camera_cover.emplace_back(c.start, c.end);
+  for (const auto& [first, last] : covered_frames_) info.covered_frames.emplace_back(first, last);
+  dataset::write_info(root.string(), info);
   std::ifstream src(scenario_.source_path, std::ios::binary);
   std::string yaml((std::istreambuf_iterator<char>(src)), std::istreambuf_iterator<char>());
   write("scenario.yaml", yaml);

@@ -16,6 +16,8 @@
 #include <vector>
 
 #include "common/staged_directory.h"
+#include "dataset/boxes.h"
+#include "dataset/object_poses.h"
 #include "sim/render/rendered_frame.h"
 #include "sim/scenario/class_table.h"
 #include "sim/scenario/scenario.h"
@@ -59,6 +61,7 @@ class DatasetWriter {
  private:
   struct Job {
     RenderedFrame frame;
+    double rgb_timestamp = 0;
     std::string stamp_rgb, stamp_depth;
     int index = 0;
     bool covered = false;  // a covered camera's frame gets no sensor noise
@@ -82,12 +85,14 @@ class DatasetWriter {
   std::vector<std::thread> threads_;
   WriterTimings totals_;
 
-  std::string rgb_txt_, depth_txt_, assoc_txt_, gt_txt_, labels_txt_, poses_txt_, boxes_txt_;
+  std::string rgb_txt_, depth_txt_, assoc_txt_, gt_txt_;
+  // The truth files' records, written by the dataset library at the end.
+  std::vector<double> label_timestamps_;
+  std::vector<dataset::ObjectPoseRecord> object_poses_;
+  std::vector<dataset::BoxRecord> boxes_;
   std::vector<std::pair<std::string, std::string>> yolo_files_;  // stamp -> content
   int frames_ = 0;
   std::vector<std::pair<int, int>> covered_frames_;  // first and last index of each cover
 };
-
-std::string format_timestamp(double t);
 
 }  // namespace depot::sim

@@ -12,8 +12,8 @@
 #include <type_traits>
 
 #include "common/error.h"
+#include "common/text_records.h"
 #include "common/tum_io.h"
-#include "slam/detect/text_records.h"
 
 namespace depot::slam {
 namespace {

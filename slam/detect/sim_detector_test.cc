@@ -21,6 +21,7 @@
 #include "common/error.h"
 #include "common/rng.h"
 #include "common/testing/error_of.h"
+#include "dataset/boxes.h"
 #include "slam/detect/detection_file.h"
 #include "slam/detect/sim_detector_fit.h"
 
@@ -48,29 +49,6 @@ std::string render(const std::string& scenario, int width, const std::string& ro
   if (pclose(pipe) != 0) {
     std::cerr << cmd << " failed:\n" << output;
     return "";
-  }
-  return out;
-}
-
-// boxes.txt read independently of the detector.
-struct Box {
-  double t;
-  int id;
-  std::string cls;
-  cv::Rect2f rect;
-};
-
-std::vector<Box> read_boxes(const std::string& dataset) {
-  std::ifstream in(dataset + "/boxes.txt");
-  std::vector<Box> out;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream s(line);
-    Box b;
-    int x1, y1, x2, y2, vis, moving;
-    s >> b.t >> b.id >> b.cls >> x1 >> y1 >> x2 >> y2 >> vis >> moving;
-    b.rect = cv::Rect2f(x1, y1, x2 - x1, y2 - y1);
-    out.push_back(b);
   }
   return out;
 }
@@ -165,20 +143,22 @@ TEST_F(SimDetectorTest, PerfectModeReturnsExactlyTheGroundTruth) {
   SimDetector detector(*dataset_, config);
   EXPECT_EQ(detector.name(), "sim-perfect");
   ASSERT_EQ(detector.frame_count(), static_cast<size_t>(kFrames));
-  const std::vector<Box> boxes = read_boxes(*dataset_);
+  // boxes.txt as the dataset library reads it, without the detector.
+  const std::vector<dataset::BoxRecord> boxes = dataset::read_boxes(*dataset_);
   ASSERT_FALSE(boxes.empty());
   size_t seen = 0;
   for (size_t i = 0; i < detector.frame_count(); ++i) {
     const double t = detector.frame_timestamp(i);
     const auto dets = detector.detect(cv::Mat(), t, static_cast<long>(i));
-    std::vector<Box> expected;
-    for (const Box& b : boxes)
-      if (std::abs(b.t - t) < 1e-4) expected.push_back(b);
+    std::vector<dataset::BoxRecord> expected;
+    for (const dataset::BoxRecord& b : boxes)
+      if (std::abs(b.timestamp - t) < 1e-4) expected.push_back(b);
     ASSERT_EQ(dets.size(), expected.size()) << "frame " << i;
     for (size_t k = 0; k < dets.size(); ++k) {
-      EXPECT_EQ(dets[k].class_name, expected[k].cls);
-      EXPECT_EQ(detector.class_names().at(dets[k].class_id), expected[k].cls);
-      EXPECT_EQ(dets[k].box, expected[k].rect);
+      const dataset::BoxRecord& e = expected[k];
+      EXPECT_EQ(dets[k].class_name, e.class_name);
+      EXPECT_EQ(detector.class_names().at(dets[k].class_id), e.class_name);
+      EXPECT_EQ(dets[k].box, cv::Rect2f(e.x1, e.y1, e.x2 - e.x1, e.y2 - e.y1));
       EXPECT_EQ(dets[k].confidence, 1.0f);
     }
     seen += dets.size();
@@ -566,11 +546,11 @@ TEST_F(SimDetectorTest, MissingOrMalformedFilesAreClearErrors) {
        "visible_pixels moving), found 8"},
       {s + " 22 horse 1 2 30 40 5 0", "class 'horse' is not in classes.txt"},
       {s + " 22 desk 1 2 3.5 4 5 0", "x2 '3.5' is not an integer"},
-      {s + " 22 desk 10 2 3 40 5 0", "box 10 2 3 40 is empty or outside the 160x120 image"},
-      {s + " 22 desk 10 2 300 40 5 0", "box 10 2 300 40 is empty or outside the 160x120 image"},
+      {s + " 22 desk 10 2 3 40 5 0", "box 10 2 3 40 is empty or outside the image"},
+      {s + " 22 desk 10 2 300 40 5 0", "box 10 2 300 40 is outside the 160x120 image"},
       {s + " 22 desk 1 2 3 4 5 0", "visible_pixels 5 is not in [1, box area 4]"},
       {s + " 22 desk 1 2 3 4 2 7", "moving '7' is not 0 or 1"},
-      {"12.5 22 desk 1 2 3 4 2 0", "timestamp 12.5 is not a frame of rgb.txt"},
+      {"12.5 22 desk 1 2 3 4 2 0", "timestamp 12.500000 is not a frame of rgb.txt"},
       {"nan 22 desk 1 2 3 4 2 0", "timestamp 'nan' is not a number"},
   };
   for (const auto& c : cases) {

@@ -3,17 +3,15 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 
 #include "common/error.h"
 #include "common/tum_io.h"
 #include "common/yaml_file.h"
+#include "dataset/boxes.h"
+#include "dataset/dataset_files.h"
 #include "slam/detect/class_names.h"
-#include "slam/detect/text_records.h"
 
 namespace depot::slam {
 namespace {
@@ -22,15 +20,6 @@ constexpr double kMatchTolerance = 1e-4;  // s
 
 std::string join(const std::string& dir, const char* name) {
   return (std::filesystem::path(dir) / name).string();
-}
-
-long parse_int(const std::string& where, const std::string& s, const char* what) {
-  errno = 0;
-  char* end = nullptr;
-  const long v = std::strtol(s.c_str(), &end, 10);
-  if (end == s.c_str() || *end != '\0' || errno == ERANGE)
-    fail(where, std::string(what) + " '" + s + "' is not an integer");
-  return v;
 }
 
 cv::Size read_image_size(const std::string& path) {
@@ -91,46 +80,33 @@ DatasetBoxes read_dataset_boxes(const std::string& dir) {
   d.frames.resize(d.timestamps.size());
   d.classes = read_classes(join(dir, "classes.txt"));
 
-  const std::string boxes_path = join(dir, "boxes.txt");
-  std::ifstream in(boxes_path);
-  if (!in) fail(boxes_path, "cannot open file (the ground-truth boxes)");
+  // boxes.txt as the dataset library reads it; here the checks against the
+  // other files: a frame of rgb.txt, a class of classes.txt, inside the image.
   const cv::Size image = d.image_size;
-  for_each_record(in, boxes_path, [&](const std::string& where, const std::vector<std::string>& f) {
-    if (f.size() != 9)
+  for (const dataset::BoxRecord& r : dataset::read_boxes(dir)) {
+    const std::string where = dataset::box_location(dir, r);
+    const long frame = nearest_timestamp(d.timestamps, r.timestamp);
+    if (frame < 0)
       fail(where,
-           "expected 9 fields (timestamp id class x1 y1 x2 y2 visible_pixels moving), found " +
-               std::to_string(f.size()));
-    char* end = nullptr;
-    const double t = std::strtod(f[0].c_str(), &end);
-    if (end == f[0].c_str() || *end != '\0' || !std::isfinite(t))
-      fail(where, "timestamp '" + f[0] + "' is not a number");
-    const long frame = nearest_timestamp(d.timestamps, t);
-    if (frame < 0) fail(where, "timestamp " + f[0] + " is not a frame of rgb.txt");
+           "timestamp " + dataset::format_timestamp(r.timestamp) + " is not a frame of rgb.txt");
+    const auto cls = std::find(d.classes.begin(), d.classes.end(), r.class_name);
+    if (cls == d.classes.end()) fail(where, "class '" + r.class_name + "' is not in classes.txt");
+    if (r.x2 > image.width || r.y2 > image.height)
+      fail(where, "box " + std::to_string(r.x1) + " " + std::to_string(r.y1) + " " +
+                      std::to_string(r.x2) + " " + std::to_string(r.y2) + " is outside the " +
+                      std::to_string(image.width) + "x" + std::to_string(image.height) + " image");
     TruthBox b;
-    b.id = static_cast<int>(parse_int(where, f[1], "id"));
-    b.class_name = f[2];
-    const auto cls = std::find(d.classes.begin(), d.classes.end(), b.class_name);
-    if (cls == d.classes.end()) fail(where, "class '" + b.class_name + "' is not in classes.txt");
+    b.id = r.id;
+    b.class_name = r.class_name;
     b.class_id = static_cast<int>(cls - d.classes.begin());
-    b.x1 = static_cast<int>(parse_int(where, f[3], "x1"));
-    b.y1 = static_cast<int>(parse_int(where, f[4], "y1"));
-    b.x2 = static_cast<int>(parse_int(where, f[5], "x2"));
-    b.y2 = static_cast<int>(parse_int(where, f[6], "y2"));
-    b.visible_pixels = static_cast<int>(parse_int(where, f[7], "visible_pixels"));
-    const long moving = parse_int(where, f[8], "moving");
-    if (moving != 0 && moving != 1) fail(where, "moving '" + f[8] + "' is not 0 or 1");
-    b.moving = moving == 1;
-    if (b.x1 < 0 || b.y1 < 0 || b.x2 <= b.x1 || b.y2 <= b.y1 || b.x2 > image.width ||
-        b.y2 > image.height)
-      fail(where, "box " + f[3] + " " + f[4] + " " + f[5] + " " + f[6] +
-                      " is empty or outside the " + std::to_string(image.width) + "x" +
-                      std::to_string(image.height) + " image");
-    if (b.visible_pixels < 1 || b.visible_pixels > b.area())
-      fail(where,
-           "visible_pixels " + f[7] + " is not in [1, box area " + std::to_string(b.area()) + "]");
-    d.frames[frame].push_back(std::move(b));
-  });
-  if (in.bad()) fail(boxes_path, "read error");
+    b.x1 = r.x1;
+    b.y1 = r.y1;
+    b.x2 = r.x2;
+    b.y2 = r.y2;
+    b.visible_pixels = r.visible_pixels;
+    b.moving = r.moving;
+    d.frames[static_cast<size_t>(frame)].push_back(std::move(b));
+  }
   return d;
 }
 

@@ -1,13 +1,9 @@
 #pragma once
-// The ground-truth boxes of a simulated dataset, as its files state them:
-// rgb.txt (the frames), classes.txt (the detectable classes), calibration.yaml
-// (the image size) and boxes.txt, one line per visible detectable instance
-// and frame:
-//
-//   timestamp id class x1 y1 x2 y2 visible_pixels moving
-//
-// in pixels with x2/y2 exclusive. The one reader of boxes.txt: the simulated
-// detector and `depot eval detector` both use it.
+// The ground-truth boxes of a simulated dataset, per frame: rgb.txt (the
+// frames), classes.txt (the detectable classes), calibration.yaml (the image
+// size) and boxes.txt (read by dataset/boxes.h), each box checked against
+// the other three. The simulated detector and `depot eval detector` both
+// use it.
 #include <string>
 #include <vector>
 

@@ -13,10 +13,12 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "common/error.h"
+#include "dataset/dataset_files.h"
+#include "dataset/label_images.h"
+#include "dataset/object_poses.h"
 
 namespace fs = std::filesystem;
 
@@ -31,9 +33,7 @@ cv::Mat Dataset::depth_metres(size_t i) const {
 }
 
 cv::Mat Dataset::labels_image(size_t i) const {
-  cv::Mat raw = cv::imread(root + "/" + labels.at(i).path, cv::IMREAD_UNCHANGED);
-  if (raw.type() != CV_16U) throw Error("labels not 16-bit: " + labels.at(i).path);
-  return raw;
+  return dataset::read_label_image(root, labels.at(i).path);
 }
 
 cv::Mat Dataset::rgb(size_t i) const {
@@ -59,53 +59,15 @@ Dataset read_dataset(const std::string& root) {
   d.calibration.depth_factor = calib["depth"]["factor"].as<double>();
   d.frames = read_associations(root + "/associations.txt");
   d.groundtruth = read_tum_trajectory(root + "/groundtruth.txt");
-  d.labels = read_file_list(root + "/labels.txt");
-
-  std::ifstream objects_file(root + "/objects.json");
-  nlohmann::json objects = nlohmann::json::parse(objects_file);
-  auto pose_of = [](const nlohmann::json& j) {
-    auto t = j["t"];
-    auto q = j["q_xyzw"];
-    return make_pose(Eigen::Quaterniond(q[3], q[0], q[1], q[2]), Eigen::Vector3d(t[0], t[1], t[2]));
-  };
-  for (const auto& o : objects["instances"]) {
-    ObjectInfo info;
-    info.id = o["id"];
-    info.name = o["name"];
-    info.class_name = o["class"];
-    info.asset = o.value("asset", "");
-    info.category = o["category"];
-    info.kind = o["kind"];
-    info.pose = pose_of(o["pose"]);
-    auto mn = o["extent"]["min"];
-    auto mx = o["extent"]["max"];
-    info.extent = Eigen::AlignedBox3d(Eigen::Vector3d(mn[0], mn[1], mn[2]),
-                                      Eigen::Vector3d(mx[0], mx[1], mx[2]));
-    d.objects[info.id] = info;
-  }
-
+  d.labels = dataset::read_label_list(root);
+  for (const dataset::ObjectRecord& o : dataset::read_objects(root).objects) d.objects[o.id] = o;
   std::map<std::string, size_t> frame_of;
-  for (size_t i = 0; i < d.frames.size(); ++i) {
-    char buf[64];
-    std::snprintf(buf, sizeof(buf), "%.6f", d.frames[i].rgb_timestamp);
-    frame_of[buf] = i;
-  }
+  for (size_t i = 0; i < d.frames.size(); ++i)
+    frame_of[dataset::format_timestamp(d.frames[i].rgb_timestamp)] = i;
   d.object_poses.resize(d.frames.size());
-  std::ifstream poses(root + "/object_poses.txt");
-  std::string line;
-  while (std::getline(poses, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream in(line);
-    std::string stamp;
-    int id, moving;
-    double v[7];
-    in >> stamp >> id >> v[0] >> v[1] >> v[2] >> v[3] >> v[4] >> v[5] >> v[6] >> moving;
-    ObjectPose p;
-    p.pose =
-        make_pose(Eigen::Quaterniond(v[6], v[3], v[4], v[5]), Eigen::Vector3d(v[0], v[1], v[2]));
-    p.moving = moving != 0;
-    d.object_poses.at(frame_of.at(stamp))[id] = p;
-  }
+  for (const dataset::ObjectPoseRecord& r : dataset::read_object_poses(root))
+    d.object_poses.at(frame_of.at(dataset::format_timestamp(r.timestamp)))[r.id] = {r.pose,
+                                                                                    r.moving};
   return d;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Test-side reading of a written dataset: calibration, ground truth, images,
-// objects and per-frame object states, independent of the simulator's code
-// paths where that matters (so tests check the files, not the writer).
+// objects and per-frame object states. The truth files are read by the
+// dataset library (dataset/), never by the simulator's code, so tests check
+// the files, not the writer.
 #include <map>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 
 #include "common/pose.h"
 #include "common/tum_io.h"
+#include "dataset/objects.h"
 
 namespace depot::test {
 
@@ -18,13 +20,7 @@ struct Calibration {
   double fx = 0, fy = 0, cx = 0, cy = 0, depth_factor = 0;
 };
 
-struct ObjectInfo {
-  int id = 0;
-  std::string name, class_name, category, kind;
-  std::string asset;  // catalogue entry of a mesh-style actor, or ""
-  Pose pose = Pose::Identity();
-  Eigen::AlignedBox3d extent;
-};
+using ObjectInfo = dataset::ObjectRecord;
 
 struct ObjectPose {
   Pose pose = Pose::Identity();

@@ -14,6 +14,7 @@
 #include "common/percentile.h"
 #include "common/progress.h"
 #include "common/tum_io.h"
+#include "dataset/objects.h"
 #include "eval/alignment.h"
 #include "eval/ate.h"
 #include "eval/instance_classes.h"
@@ -166,7 +167,8 @@ CloudScore score_static_cloud(const CloudScoreOptions& o) {
   // On moving objects: frames where something moves, the point on its pixel
   // and at its depth.
   std::vector<uint8_t> on_moving(world.size(), 0);
-  const std::map<int, std::string> classes = eval::read_instance_classes(o.dataset);
+  const std::map<int, std::string> classes =
+      eval::instance_classes(dataset::read_objects(o.dataset));
   Progress progress("eval cloud: movers", sequence.size(), !o.quiet);
   for (size_t f = 0; f < sequence.size(); f += o.every) {
     progress.update(f + 1, "");

@@ -11,6 +11,7 @@
 
 #include "common/config_path.h"
 #include "common/error.h"
+#include "dataset/boxes.h"
 #include "slam/detect/sim_detector.h"
 #include "tools/runner/detector_eval.h"
 
@@ -21,16 +22,6 @@ namespace {
 
 bool contains(const std::vector<std::string>& v, const std::string& s) {
   return std::find(v.begin(), v.end(), s) != v.end();
-}
-
-nlohmann::json read_info(const std::string& dataset) {
-  std::ifstream in(fs::path(dataset) / "info.json");
-  if (!in) return nullptr;
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception&) {
-    return nullptr;  // only for the record; the dataset's own files are checked
-  }
 }
 
 // What the detector did with each box of a frame, and its false positives.
@@ -148,22 +139,20 @@ std::string number_text(double v) {
 
 // The command that renders the dataset again, from its info.json.
 std::string render_command(const CalibrationDataset& d) {
-  const nlohmann::json& i = d.info;
-  if (!i.is_object() || !i.contains("scenario") || !i.contains("seed") || !i.contains("frames"))
-    return "";
-  std::string cmd = "depot sim render " + i["scenario"].get<std::string>() + " -o " + d.path +
-                    " --frames " + std::to_string(i["frames"].get<long>()) + " --seed " +
-                    std::to_string(i["seed"].get<long>());
+  if (!d.info || d.info->scenario.empty() || !d.info->seed || !d.info->frames) return "";
+  const dataset::DatasetInfo& i = *d.info;
+  std::string cmd = "depot sim render " + i.scenario + " -o " + d.path + " --frames " +
+                    std::to_string(*i.frames) + " --seed " + std::to_string(*i.seed);
   if (d.image_size.width != 640) cmd += " --width " + std::to_string(d.image_size.width);
-  if (i.value("sensor", "kinect") == "ideal") cmd += " --ideal";
-  if (i.contains("dynamic_load") && i["dynamic_load"].get<double>() != 1.0)
-    cmd += " --load " + number_text(i["dynamic_load"].get<double>());
+  if (i.sensor == "ideal") cmd += " --ideal";
+  if (i.dynamic_load && *i.dynamic_load != 1.0) cmd += " --load " + number_text(*i.dynamic_load);
   // Styles other than the default (mesh).
-  for (const char* k : {"actors_style", "props_style"})
-    if (i.contains(k) && i[k].is_string() && i[k].get<std::string>() != "mesh")
-      cmd += std::string(" --set ") + k + "=" + i[k].get<std::string>();
-  if (i.contains("world_seed") && i["world_seed"] != i["seed"])
-    cmd += " --set seed_world=" + std::to_string(i["world_seed"].get<long>());
+  if (!i.actors_style.empty() && i.actors_style != "mesh")
+    cmd += " --set actors_style=" + i.actors_style;
+  if (!i.props_style.empty() && i.props_style != "mesh")
+    cmd += " --set props_style=" + i.props_style;
+  if (i.world_seed && i.world_seed != i.seed)
+    cmd += " --set seed_world=" + std::to_string(*i.world_seed);
   return cmd;
 }
 
@@ -195,7 +184,7 @@ std::string portable_path(const std::string& path) {
 
 void check_calibration_dataset(const std::string& path) {
   if (!fs::is_directory(path)) fail(path, "dataset folder not found");
-  if (!fs::exists(fs::path(path) / "boxes.txt"))
+  if (!dataset::has_boxes(path))
     fail(path,
          "no ground-truth boxes (boxes.txt): the calibration needs a simulated dataset (depot sim "
          "render)");
@@ -232,7 +221,7 @@ DetectorCalibration calibrate_sim_detector(slam::Detector& detector,
     out.detector_name = real.detector;
     CalibrationDataset d;
     d.path = path;
-    d.info = read_info(path);
+    d.info = dataset::read_info(path);
     d.image_size = model.image_size();
     d.frames = model.frame_count();
     d.scored_frames = static_cast<size_t>(real.score.frames());
@@ -278,16 +267,18 @@ std::string calibration_file_text(const DetectorCalibration& cal, const std::str
   for (const CalibrationDataset& d : cal.datasets) {
     out << YAML::BeginMap;
     out << YAML::Key << "path" << YAML::Value << d.path;
-    const nlohmann::json& i = d.info;
-    if (i.is_object()) {
-      for (const char* k : {"scenario", "actors_style", "props_style", "sensor"})
-        if (i.contains(k) && i[k].is_string())
-          out << YAML::Key << k << YAML::Value << i[k].get<std::string>();
-      for (const char* k : {"seed", "world_seed"})
-        if (i.contains(k) && i[k].is_number())
-          out << YAML::Key << k << YAML::Value << i[k].get<long>();
-      if (i.contains("dynamic_load") && i["dynamic_load"].is_number())
-        out << YAML::Key << "dynamic_load" << YAML::Value << i["dynamic_load"].get<double>();
+    if (d.info) {
+      const dataset::DatasetInfo& i = *d.info;
+      auto text = [&](const char* key, const std::string& value) {
+        if (!value.empty()) out << YAML::Key << key << YAML::Value << value;
+      };
+      text("scenario", i.scenario);
+      text("actors_style", i.actors_style);
+      text("props_style", i.props_style);
+      text("sensor", i.sensor.value_or(""));
+      if (i.seed) out << YAML::Key << "seed" << YAML::Value << *i.seed;
+      if (i.world_seed) out << YAML::Key << "world_seed" << YAML::Value << *i.world_seed;
+      if (i.dynamic_load) out << YAML::Key << "dynamic_load" << YAML::Value << *i.dynamic_load;
     }
     out << YAML::Key << "size" << YAML::Value
         << std::to_string(d.image_size.width) + "x" + std::to_string(d.image_size.height);

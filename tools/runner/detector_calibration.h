@@ -8,12 +8,13 @@
 // re-run on the same datasets so that its recall per class can be compared
 // with the real one's.
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
+#include "dataset/dataset_info.h"
 #include "eval/class_mapping.h"
 #include "eval/detection_score.h"
 #include "slam/detect/detection.h"
@@ -36,7 +37,7 @@ struct CalibrationRequest {
 
 struct CalibrationDataset {
   std::string path;
-  nlohmann::json info;  // its info.json (null when absent)
+  std::optional<dataset::DatasetInfo> info;  // its info.json (none when absent)
   cv::Size image_size;
   size_t frames = 0, scored_frames = 0;
 };

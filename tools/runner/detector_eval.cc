@@ -9,6 +9,8 @@
 #include "common/percentile.h"
 #include "common/png_codec.h"
 #include "common/progress.h"
+#include "dataset/boxes.h"
+#include "dataset/objects.h"
 #include "slam/detect/truth_boxes.h"
 
 namespace depot::runner {
@@ -34,13 +36,13 @@ std::vector<eval::ScoredDetection> detect(slam::Detector& detector, const cv::Ma
 }  // namespace
 
 std::vector<eval::TruthObject> truth_objects(const std::vector<slam::TruthBox>& boxes,
-                                             const std::map<int, eval::InstanceInfo>& instances) {
+                                             const std::map<int, std::string>& assets) {
   std::vector<eval::TruthObject> objects;
   objects.reserve(boxes.size());
   for (const slam::TruthBox& b : boxes) {
-    auto it = instances.find(b.id);
+    auto it = assets.find(b.id);
     objects.push_back({b.class_name, b.rect(), static_cast<double>(b.visible_pixels),
-                       it == instances.end() ? std::string() : it->second.model});
+                       it == assets.end() ? std::string() : it->second});
   }
   return objects;
 }
@@ -58,12 +60,12 @@ eval::ClassMapping class_mapping_for(const std::string& type, const std::string&
 DetectorEval evaluate_on_dataset(slam::Detector& detector, const std::string& dataset,
                                  const eval::ClassMapping& mapping, size_t every, bool reads_pixels,
                                  bool quiet, const FrameObserver& observe) {
-  if (!std::filesystem::exists(std::filesystem::path(dataset) / "boxes.txt"))
+  if (!dataset::has_boxes(dataset))
     fail(dataset,
          "no ground-truth boxes (boxes.txt): not a simulated dataset (score real images "
          "with --images)");
   const slam::DatasetBoxes truth = slam::read_dataset_boxes(dataset);
-  const std::map<int, eval::InstanceInfo> instances = eval::read_instances(dataset);
+  const std::map<int, std::string> assets = eval::instance_assets(dataset::read_objects(dataset));
   mapping.check_classes(truth.classes, dataset + "/classes.txt");
   DetectorEval eval{
       eval::DetectionScore(truth.classes, mapping), detector.name(), detector.class_names(), {}};
@@ -76,7 +78,7 @@ DetectorEval evaluate_on_dataset(slam::Detector& detector, const std::string& da
         reads_pixels ? read_image((std::filesystem::path(dataset) / truth.rgb_files[i]).string(),
                                   ImageRead::kColor)
                      : cv::Mat();
-    const std::vector<eval::TruthObject> objects = truth_objects(truth.frames[i], instances);
+    const std::vector<eval::TruthObject> objects = truth_objects(truth.frames[i], assets);
     const std::vector<eval::ScoredDetection> found =
         detect(detector, bgr, truth.timestamps[i], static_cast<long>(i), eval);
     eval.score.add_frame(objects, found);

@@ -31,10 +31,10 @@ struct DetectorEval {
 // scenes/detectors/coco_to_depot.yaml.
 eval::ClassMapping class_mapping_for(const std::string& type, const std::string& path);
 
-// The truth boxes as the scoring takes them.
-std::vector<eval::TruthObject> truth_objects(
-    const std::vector<slam::TruthBox>& boxes,
-    const std::map<int, eval::InstanceInfo>& instances = {});
+// The truth boxes as the scoring takes them; `assets` (instance id -> the
+// catalogue asset it is drawn from) names each box's model.
+std::vector<eval::TruthObject> truth_objects(const std::vector<slam::TruthBox>& boxes,
+                                             const std::map<int, std::string>& assets = {});
 
 // Sees every scored frame of a dataset: its rgb.txt index, its truth boxes
 // (boxes.txt order) and the detections scored against them.

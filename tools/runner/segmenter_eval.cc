@@ -11,6 +11,7 @@
 #include "common/png_codec.h"
 #include "common/progress.h"
 #include "common/tum_io.h"
+#include "dataset/objects.h"
 #include "eval/instance_classes.h"
 #include "eval/motion_truth.h"
 
@@ -123,7 +124,8 @@ std::string SegmenterEval::text() const {
 SegmenterEval evaluate_segmenter(slam::PersonSegmenter& segmenter, const std::string& dataset,
                                  size_t every, bool quiet) {
   const eval::MotionTruth truth(dataset);
-  const std::set<int> people = eval::instances_of(eval::read_instance_classes(dataset), kPerson);
+  const std::set<int> people =
+      eval::instances_of(eval::instance_classes(dataset::read_objects(dataset)), kPerson);
   const std::vector<StampedFile> rgb = read_file_list((fs::path(dataset) / "rgb.txt").string());
   SegmenterEval eval{segmenter.name(), false, {}};
   Progress progress("eval segmenter", (rgb.size() + every - 1) / every, !quiet);

@@ -1,0 +1,87 @@
+#include "dataset/boxes.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "common/error.h"
+#include "common/text_records.h"
+#include "common/tum_io.h"
+#include "dataset/dataset_files.h"
+#include "dataset/format_version.h"
+#include "dataset/text_fields.h"
+
+namespace depot::dataset {
+namespace {
+
+BoxRecord parse_box(const std::vector<std::string>& f, const std::string& where) {
+  if (f.size() != 9)
+    fail(where, "expected 9 fields (timestamp id class x1 y1 x2 y2 visible_pixels moving), found " +
+                    std::to_string(f.size()));
+  BoxRecord b;
+  b.timestamp = parse_number_field(f[0], "timestamp", where);
+  b.id = static_cast<int>(parse_integer_field(f[1], "id", where));
+  b.class_name = f[2];
+  b.x1 = static_cast<int>(parse_integer_field(f[3], "x1", where));
+  b.y1 = static_cast<int>(parse_integer_field(f[4], "y1", where));
+  b.x2 = static_cast<int>(parse_integer_field(f[5], "x2", where));
+  b.y2 = static_cast<int>(parse_integer_field(f[6], "y2", where));
+  b.visible_pixels = static_cast<int>(parse_integer_field(f[7], "visible_pixels", where));
+  b.moving = parse_flag_field(f[8], "moving", where);
+  if (b.x1 < 0 || b.y1 < 0 || b.x2 <= b.x1 || b.y2 <= b.y1)
+    fail(where,
+         "box " + f[3] + " " + f[4] + " " + f[5] + " " + f[6] + " is empty or outside the image");
+  if (b.visible_pixels < 1 || b.visible_pixels > b.area())
+    fail(where,
+         "visible_pixels " + f[7] + " is not in [1, box area " + std::to_string(b.area()) + "]");
+  return b;
+}
+
+}  // namespace
+
+std::string boxes_header(const std::string& scenario_name) {
+  return "# ground-truth boxes of visible detectable instances, pixels, x2/y2 exclusive\n" +
+         file_header_line(scenario_name) +
+         "# timestamp id class x1 y1 x2 y2 visible_pixels moving\n";
+}
+
+std::string format_box(const BoxRecord& b) {
+  char buf[256];
+  std::snprintf(buf, sizeof(buf), "%s %d %s %d %d %d %d %d %d\n",
+                format_timestamp(b.timestamp).c_str(), b.id, b.class_name.c_str(), b.x1, b.y1, b.x2,
+                b.y2, b.visible_pixels, b.moving ? 1 : 0);
+  return buf;
+}
+
+void write_boxes(const std::string& dataset_dir, const std::string& scenario_name,
+                 const std::vector<BoxRecord>& boxes) {
+  std::string text = boxes_header(scenario_name);
+  for (const BoxRecord& b : boxes) text += format_box(b);
+  write_text_file_atomic(dataset_file(dataset_dir, kBoxesFile), text);
+}
+
+bool has_boxes(const std::string& dataset_dir) {
+  return std::filesystem::is_regular_file(dataset_file(dataset_dir, kBoxesFile));
+}
+
+std::vector<BoxRecord> read_boxes(const std::string& dataset_dir) {
+  check_format_version(dataset_dir);
+  const std::string path = dataset_file(dataset_dir, kBoxesFile);
+  std::ifstream in(path);
+  if (!in) fail(path, "cannot open file (the ground-truth boxes)");
+  std::vector<BoxRecord> boxes;
+  for_each_numbered_record(
+      in, path, [&](int line, const std::string& where, const std::vector<std::string>& f) {
+        BoxRecord b = parse_box(f, where);
+        b.line = line;
+        boxes.push_back(std::move(b));
+      });
+  if (in.bad()) fail(path, "read error");
+  return boxes;
+}
+
+std::string box_location(const std::string& dataset_dir, const BoxRecord& box) {
+  return dataset_file(dataset_dir, kBoxesFile) + ":" + std::to_string(box.line);
+}
+
+}  // namespace depot::dataset
