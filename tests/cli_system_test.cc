@@ -94,6 +94,31 @@ trajectory_format: euroc
       depot("slam run " + walking() + " --system " + euroc + " -q -o " + from_euroc);
   ASSERT_EQ(c.code, 0) << c.output;
   EXPECT_EQ(ate_rmse(walking(), from_euroc), ate_rmse(walking(), builtin));
+
+  // And as KITTI poses (3x4 matrices) with a timestamps file.
+  const std::string kitti = write_yaml("kitti", R"(command:
+  - /bin/sh
+  - -c
+  - |
+    "$0" slam run "$1" --mode masked --mapping sync -q -o "$2.tum" &&
+    awk '!/^#/ { x = $5; y = $6; z = $7; w = $8;
+      printf "%.12f %.12f %.12f %s %.12f %.12f %.12f %s %.12f %.12f %.12f %s\n",
+        1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w), $2,
+        2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w), $3,
+        2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y), $4 }' "$2.tum" > "$2" &&
+    awk '!/^#/ { print $1 }' "$2.tum" > "$3"
+  - "{depot}"
+  - "{dataset}"
+  - "{trajectory}"
+  - "{timestamps}"
+trajectory_format: kitti
+)");
+  const std::string from_kitti = temp_path("from_kitti") + ".txt";
+  const DepotResult k =
+      depot("slam run " + walking() + " --system " + kitti + " -q -o " + from_kitti);
+  ASSERT_EQ(k.code, 0) << k.output;
+  EXPECT_NEAR(std::stod(ate_rmse(walking(), from_kitti)), std::stod(ate_rmse(walking(), builtin)),
+              2e-6);
 }
 
 TEST(CliSystem, Open3dOdometryRunsAsASystem) {

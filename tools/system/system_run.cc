@@ -101,24 +101,38 @@ std::string with_log(const std::string& reason, const std::string& log_path) {
                       : reason + " (log " + log_path + " ends: " + last + ")";
 }
 
-// The system's trajectory, in the dataset's frames' timestamps.
+// The system's trajectory, in the dataset's frames' timestamps. A KITTI
+// file's poses take the timestamps file the system wrote ({timestamps}), or
+// else are one per frame in order.
 std::vector<StampedPose> read_system_trajectory(const SystemSpec& spec, const std::string& path,
+                                                const std::string& timestamps_path,
                                                 const slam::TumSequence& sequence) {
   std::vector<double> frame_times;
   for (size_t i = 0; i < sequence.size(); ++i)
     frame_times.push_back(sequence.entry(i).rgb_timestamp);
+  std::vector<StampedPose> out;
   if (spec.trajectory_format == TrajectoryFormat::kKitti) {
     const std::vector<Pose> poses = read_kitti_poses(path);
-    if (poses.size() != frame_times.size())
-      fail(path, "a KITTI trajectory has one pose per frame: " + std::to_string(poses.size()) +
-                     " poses for " + std::to_string(frame_times.size()) + " frames");
-    std::vector<StampedPose> out;
-    for (size_t i = 0; i < poses.size(); ++i) out.push_back({frame_times[i], poses[i]});
-    return out;
+    std::vector<double> times = frame_times;
+    if (spec.writes_timestamps) {
+      if (!fs::is_regular_file(timestamps_path))
+        fail(timestamps_path, "no timestamps file written for the KITTI trajectory");
+      times = read_timestamps(timestamps_path);
+      for (size_t i = 1; i < times.size(); ++i)
+        if (!(times[i] > times[i - 1]))
+          fail(timestamps_path, "timestamps must increase (line " + std::to_string(i + 1) + ")");
+    }
+    if (poses.size() != times.size())
+      fail(path,
+           std::to_string(poses.size()) + " KITTI poses for " + std::to_string(times.size()) +
+               (spec.writes_timestamps ? " timestamps in " + timestamps_path
+                                       : " frames (one pose per frame without {timestamps})"));
+    for (size_t i = 0; i < poses.size(); ++i) out.push_back({times[i], poses[i]});
+    if (!spec.writes_timestamps) return out;
+  } else {
+    out = spec.trajectory_format == TrajectoryFormat::kEuroc ? read_euroc_trajectory(path)
+                                                             : read_tum_trajectory(path);
   }
-  std::vector<StampedPose> out = spec.trajectory_format == TrajectoryFormat::kEuroc
-                                     ? read_euroc_trajectory(path)
-                                     : read_tum_trajectory(path);
   std::vector<double> sorted = frame_times;
   std::sort(sorted.begin(), sorted.end());
   for (StampedPose& p : out) {
@@ -191,6 +205,7 @@ SystemRunResult run_system(const SystemSpec& spec, const SystemRunRequest& reque
       spec.trajectory_format == TrajectoryFormat::kEuroc ? ".csv" : ".txt";
   values["trajectory"] = (work / ("trajectory" + extension)).string();
   values["keypoints"] = (work / "keypoints.csv").string();
+  values["timestamps"] = (work / "timestamps.txt").string();
   // The calibration and what is derived from it, when the dataset has one.
   const std::string calibration = sequence.calibration_path();
   if (!calibration.empty()) {
@@ -218,6 +233,7 @@ SystemRunResult run_system(const SystemSpec& spec, const SystemRunRequest& reque
   // A stale output from an earlier run must not pass for this one's.
   fs::remove(values["trajectory"]);
   fs::remove(values["keypoints"]);
+  fs::remove(values["timestamps"]);
 
   ChildSpec child;
   child.argv = expand_command(spec, values);
@@ -267,7 +283,8 @@ SystemRunResult run_system(const SystemSpec& spec, const SystemRunRequest& reque
   if (!fs::is_regular_file(result.trajectory_path))
     fail(who, with_log("wrote no trajectory at " + result.trajectory_path, request.log_path));
   try {
-    result.trajectory = read_system_trajectory(spec, result.trajectory_path, sequence);
+    result.trajectory =
+        read_system_trajectory(spec, result.trajectory_path, values["timestamps"], sequence);
   } catch (const Error& e) {
     fail(who, std::string("its trajectory: ") + e.what());
   }

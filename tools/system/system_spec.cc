@@ -36,9 +36,10 @@ void for_each_placeholder(const std::string& text, Visit visit) {
 }  // namespace
 
 const std::vector<std::string>& system_placeholders() {
-  static const std::vector<std::string> names = {
-      "dataset",   "calibration", "orbslam_settings", "intrinsics", "depth_factor", "trajectory",
-      "keypoints", "work",        "system_dir",       "depot"};
+  static const std::vector<std::string> names = {"dataset",    "calibration",  "orbslam_settings",
+                                                 "intrinsics", "depth_factor", "trajectory",
+                                                 "keypoints",  "timestamps",   "work",
+                                                 "system_dir", "depot"};
   return names;
 }
 
@@ -90,6 +91,7 @@ SystemSpec load_system_spec(const std::string& path) {
         }
         names_trajectory |= name == "trajectory";
         spec.writes_keypoints |= name == "keypoints";
+        spec.writes_timestamps |= name == "timestamps";
       });
     if (!names_trajectory)
       fail(yaml_where(path, command), "the command never names {trajectory} (where to write it)");
@@ -105,6 +107,9 @@ SystemSpec load_system_spec(const std::string& path) {
         fail(yaml_where(path, format),
              "unknown trajectory_format '" + f + "' (expected tum, kitti, euroc)");
     }
+    if (spec.writes_timestamps && spec.trajectory_format != TrajectoryFormat::kKitti)
+      fail(yaml_where(path, command),
+           "{timestamps} is for a KITTI trajectory (trajectory_format: kitti)");
     if (const YAML::Node limit = root["time_limit_s"]) {
       spec.time_limit_s = limit.as<double>();
       if (!(spec.time_limit_s > 0 && spec.time_limit_s <= 86400))

@@ -20,10 +20,13 @@
 //   {trajectory}        where the system writes its trajectory
 //   {keypoints}         where it may write its per-keypoint decisions
 //                       (eval/keypoint_file.h); naming it promises the file
+//   {timestamps}        where a KITTI system writes its poses' timestamps
+//                       (seconds, one a line, as KITTI's times.txt)
 //   {work}              a scratch folder for the run
 //   {system_dir}        the folder of the system file
 //   {depot}             this depot program (to wrap a built-in mode)
-// A KITTI trajectory has one pose per frame of the dataset, in order.
+// A KITTI trajectory without {timestamps} has one pose per frame of the
+// dataset, in order.
 #include <map>
 #include <string>
 #include <vector>
@@ -40,7 +43,8 @@ struct SystemSpec {
   TrajectoryFormat trajectory_format = TrajectoryFormat::kTum;
   double time_limit_s = 3600;
   std::map<std::string, std::string> env;
-  bool writes_keypoints = false;  // the command names {keypoints}
+  bool writes_keypoints = false;   // the command names {keypoints}
+  bool writes_timestamps = false;  // the command names {timestamps} (KITTI)
 };
 
 // Every placeholder a command may use.

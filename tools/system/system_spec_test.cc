@@ -65,6 +65,9 @@ TEST(SystemSpec, BadFilesNameTheFileAndTheProblem) {
   EXPECT_NE(load_error("limit", "command: [x, \"{trajectory}\"]\ntime_limit_s: 0\n")
                 .find("time_limit_s must be in (0, 86400]"),
             std::string::npos);
+  EXPECT_NE(load_error("timestamps", "command: [x, \"{trajectory}\", \"{timestamps}\"]\n")
+                .find("{timestamps} is for a KITTI trajectory"),
+            std::string::npos);
   EXPECT_NE(load_error("key", "command: [x, \"{trajectory}\"]\ntimeout: 5\n")
                 .find("unknown key 'timeout'"),
             std::string::npos);
