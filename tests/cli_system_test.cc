@@ -191,13 +191,18 @@ TEST(CliSystem, AFailingSystemIsOneErrorLineAndNoOutput) {
 }
 
 TEST(CliSystem, CtrlCStopsTheSystemAndEverythingItStarted) {
-  const std::string slow = script_system("ctrl_c", "sleep 32.5 & sleep 32.5; wait");
+  // The system marks that it runs, so Ctrl-C comes while it does (however
+  // slowly depot starts, e.g. under a sanitizer).
+  const std::string marker = temp_path("started");
+  const std::string slow =
+      script_system("ctrl_c", "touch " + marker + "; sleep 32.5 & sleep 32.5; wait");
   const std::string out = temp_path("interrupted") + ".txt";
   std::string printed;
   const auto start = std::chrono::steady_clock::now();
   const int code =
       run_command(depot_binary() + " slam run " + walking() + " --system " + slow + " -q -o " +
-                      out + " 2>&1 & pid=$!; sleep 1; kill -INT $pid; wait $pid",
+                      out + " 2>&1 & pid=$!; for i in $(seq 600); do [ -e " + marker +
+                      " ] && break; sleep 0.1; done; kill -INT $pid; wait $pid",
                   &printed);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
