@@ -63,6 +63,12 @@ pid_t start_child(const ChildSpec& spec) {
   return pid;
 }
 
+std::string own_program_path() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string("depot") : exe.string();
+}
+
 int exit_code_of(int status) {
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);

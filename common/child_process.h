@@ -24,6 +24,10 @@ struct ChildSpec {
 // cannot be found or started (the log file is left as it was opened).
 pid_t start_child(const ChildSpec& spec);
 
+// This process's own program (/proc/self/exe), e.g. to start it again as a
+// child; "depot" (looked up on PATH) when the link cannot be read.
+std::string own_program_path();
+
 // A waitpid status as a shell reports it: the exit code, or 128 + signal.
 int exit_code_of(int status);
 

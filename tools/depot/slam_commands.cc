@@ -141,14 +141,7 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
     std::printf("input %g Hz, run-ahead %s: %zu frames handled after their turn\n",
                 a.options.rate_hz, a.options.run_ahead ? "on" : "off", s.late_frames);
   }
-  if (s.scored && a.options.mode != "orb") {
-    std::printf(
-        "rejection vs ground truth: precision %.3f recall %.3f with boundary points left out; "
-        "precision %.3f with them counted as static (%ld of %ld static points thrown away, %ld of "
-        "them boundary points)\n",
-        s.score.precision_without_boundary(), s.score.recall(), s.score.precision(),
-        s.score.false_positive, s.score.static_points(), s.score.boundary_false_positive);
-  }
+  if (s.scored && a.options.mode != "orb") print_rejection_vs_truth(s.score);
 }
 
 }  // namespace

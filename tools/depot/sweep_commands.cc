@@ -5,6 +5,7 @@
 #include <memory>
 #include <set>
 
+#include "common/child_process.h"
 #include "common/error.h"
 #include "common/image_size.h"
 #include "common/interrupt.h"
@@ -39,10 +40,6 @@ struct SweepArgs {
   harness::SlurmOptions slurm;
 };
 
-std::string self_program() {
-  return fs::read_symlink("/proc/self/exe").string();
-}
-
 harness::SweepSpec make_spec(const SweepArgs& a) {
   harness::SweepSpec spec;
   for (const auto& name : a.scenarios) {
@@ -72,7 +69,7 @@ void report(const harness::SweepPlan& plan, const harness::SweepLayout& layout,
 void execute(const harness::SweepPlan& plan, const harness::SweepLayout& layout,
              const SweepArgs& a) {
   harness::SweepRunOptions options;
-  options.program = self_program();
+  options.program = own_program_path();
   options.workers = a.workers;
   options.progress = !a.quiet;
   harness::SweepRunResult r;
@@ -110,7 +107,7 @@ void run_command(const SweepArgs& a) {
   if (a.plan_only) {
     // For a cluster scheduler: every render job before the runs that read it.
     for (const auto& job : plan.jobs) {
-      for (const auto& word : harness::job_command(self_program(), layout, job))
+      for (const auto& word : harness::job_command(own_program_path(), layout, job))
         std::printf("%s ", word.c_str());
       std::printf("\n");
     }

@@ -44,6 +44,15 @@ std::string system_log_path(const std::string& trajectory_path) {
                                  : trajectory_path + ".system.log";
 }
 
+void print_rejection_vs_truth(const eval::RejectionScore& s) {
+  std::printf(
+      "rejection vs ground truth: precision %.3f recall %.3f with boundary points left out; "
+      "precision %.3f with them counted as static (%ld of %ld static points thrown away, %ld of "
+      "them boundary points)\n",
+      s.precision_without_boundary(), s.recall(), s.precision(), s.false_positive,
+      s.static_points(), s.boundary_false_positive);
+}
+
 void run_external_system(const SystemRunArgs& a) {
   const system::SystemSpec spec = system::load_system_spec(system::find_system_file(a.system));
   const std::string states_path = slam::frame_states_path(a.output);
@@ -88,14 +97,7 @@ void run_external_system(const SystemRunArgs& a) {
       "wrote %s and %s (its output: %s)\n",
       share.tracked, share.frames, 100.0 * share.share(), spec.name.c_str(), r.seconds, r.frame_ms,
       a.output.c_str(), states_path.c_str(), log_path.c_str());
-  if (scored)
-    std::printf(
-        "rejection vs ground truth: precision %.3f recall %.3f with boundary points left out; "
-        "precision %.3f with them counted as static (%ld of %ld static points thrown away, %ld of "
-        "them boundary points)\n",
-        score.score.precision_without_boundary(), score.score.recall(), score.score.precision(),
-        score.score.false_positive, score.score.static_points(),
-        score.score.boundary_false_positive);
+  if (scored) print_rejection_vs_truth(score.score);
 }
 
 }  // namespace depot::cli

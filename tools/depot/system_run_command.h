@@ -2,6 +2,8 @@
 // `depot slam run --system FILE`: another program as the SLAM system.
 #include <string>
 
+#include "eval/motion_truth.h"
+
 namespace depot::cli {
 
 struct SystemRunArgs {
@@ -18,5 +20,9 @@ struct SystemRunArgs {
 std::string system_log_path(const std::string& trajectory_path);
 
 void run_external_system(const SystemRunArgs& args);
+
+// The one line `slam run` prints for a rejection scored against the truth
+// (built-in modes and systems alike; tests read it).
+void print_rejection_vs_truth(const eval::RejectionScore& score);
 
 }  // namespace depot::cli

@@ -27,12 +27,6 @@ namespace {
 // Within this of a frame's rgb timestamp, a pose is that frame's.
 constexpr double kTimestampTolerance = 1e-3;
 
-std::string own_program() {
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? std::string("depot") : exe.string();
-}
-
 std::string format_double(double v) {
   char buf[64];
   std::snprintf(buf, sizeof(buf), "%.9g", v);
@@ -106,10 +100,7 @@ std::string with_log(const std::string& reason, const std::string& log_path) {
 // else are one per frame in order.
 std::vector<StampedPose> read_system_trajectory(const SystemSpec& spec, const std::string& path,
                                                 const std::string& timestamps_path,
-                                                const slam::TumSequence& sequence) {
-  std::vector<double> frame_times;
-  for (size_t i = 0; i < sequence.size(); ++i)
-    frame_times.push_back(sequence.entry(i).rgb_timestamp);
+                                                const std::vector<double>& frame_times) {
   std::vector<StampedPose> out;
   if (spec.trajectory_format == TrajectoryFormat::kKitti) {
     const std::vector<Pose> poses = read_kitti_poses(path);
@@ -200,7 +191,7 @@ SystemRunResult run_system(const SystemSpec& spec, const SystemRunRequest& reque
   values["dataset"] = fs::absolute(request.dataset).string();
   values["work"] = work.string();
   values["system_dir"] = fs::absolute(spec.path).parent_path().string();
-  values["depot"] = request.depot_program.empty() ? own_program() : request.depot_program;
+  values["depot"] = request.depot_program.empty() ? own_program_path() : request.depot_program;
   const std::string extension =
       spec.trajectory_format == TrajectoryFormat::kEuroc ? ".csv" : ".txt";
   values["trajectory"] = (work / ("trajectory" + extension)).string();
@@ -283,8 +274,8 @@ SystemRunResult run_system(const SystemSpec& spec, const SystemRunRequest& reque
   if (!fs::is_regular_file(result.trajectory_path))
     fail(who, with_log("wrote no trajectory at " + result.trajectory_path, request.log_path));
   try {
-    result.trajectory =
-        read_system_trajectory(spec, result.trajectory_path, values["timestamps"], sequence);
+    result.trajectory = read_system_trajectory(spec, result.trajectory_path, values["timestamps"],
+                                               result.frame_timestamps);
   } catch (const Error& e) {
     fail(who, std::string("its trajectory: ") + e.what());
   }
