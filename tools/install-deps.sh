@@ -5,6 +5,9 @@
 # ships the sample photographs the default vocabulary is trained on.
 # python3-open3d runs the shipped example system under test
 # (scenes/systems/open3d_odometry), a dense RGB-D odometry baseline.
+# slurm-wlm and munge run the local single-node cluster of .ci/run's cluster
+# step (tools/slurm/local-cluster.sh); clang and libclang-rt-14-dev build the
+# libFuzzer targets (tests/fuzz, `fuzz` label); ccache speeds up rebuilds.
 set -euo pipefail
 
 packages=(
@@ -16,6 +19,8 @@ packages=(
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   chromium opencv-doc
   python3-open3d
+  slurm-wlm munge
+  clang libclang-rt-14-dev ccache
 )
 
 missing=()
