@@ -20,7 +20,7 @@ function(depot_test name)
     DEPOT_SOURCE_DIR="${DEPOT_SOURCE_DIR}"
     DEPOT_SHARED_DATA="${DEPOT_SHARED_DATA}"
     DEPOT_BINARY_DIR="${CMAKE_BINARY_DIR}")
-  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main)
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gmock GTest::gtest GTest::gtest_main)
   if(NOT ARG_TIMEOUT)
     set(ARG_TIMEOUT 600)
   endif()

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "common/error.h"
+#include "common/staged_names.h"
 #include "common/stale_partials.h"
 
 namespace fs = std::filesystem;
@@ -116,6 +117,7 @@ StagedDirectory::StagedDirectory(const std::string& final_path, const OutputKind
   if (!fs::create_directory(staging_path_, ec) || ec) {
     fail(final_path, "cannot create output folder");
   }
+  remember_staged_name(staging_path_, final_path_);
   std::lock_guard<std::mutex> lock(registry_mutex());
   registry().insert(staging_path_);
 }

@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "common/error.h"
+#include "common/staged_file.h"
+#include "common/staged_names.h"
 #include "common/testing/error_of.h"
 
 namespace fs = std::filesystem;
@@ -145,6 +147,31 @@ TEST(StagedDirectory, UnwritableParentIsAnError) {
   } else {
     EXPECT_THROW(StagedDirectory("/proc/depot_out", kKind, false), Error);
   }
+}
+
+}  // namespace
+}  // namespace depot
+
+namespace depot {
+namespace {
+
+// An error met inside a staged folder or file names a temporary path that
+// is gone once the failure unwinds; the line a user reads names the final one.
+TEST(StagedNames, ErrorsNameTheFinalPathNotTheStagedOne) {
+  const fs::path out = fresh("names");
+  std::string message;
+  try {
+    StagedDirectory dir(out.string(), kKind, false);
+    StagedFile inside((fs::path(dir.path()) / "a.txt").string());
+    throw Error((fs::path(dir.path()) / "data/0001.png").string() + ": cannot write; " +
+                inside.final_path() + " too");
+  } catch (const Error& e) {
+    message = with_final_names(e.what());
+  }
+  EXPECT_EQ(message, (out / "data/0001.png").string() + ": cannot write; " +
+                         (out / "a.txt").string() + " too");
+  EXPECT_EQ(message.find(".partial-"), std::string::npos) << message;
+  EXPECT_EQ(with_final_names("no path here"), "no path here");
 }
 
 }  // namespace

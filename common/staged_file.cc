@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "common/error.h"
+#include "common/staged_names.h"
 #include "common/stale_partials.h"
 
 namespace fs = std::filesystem;
@@ -45,6 +46,7 @@ StagedFile::StagedFile(const std::string& final_path) : final_path_(final_path) 
   const fs::path p(final_path);
   remove_stale_partials(p.has_parent_path() ? p.parent_path().string() : ".", staging_prefix(p));
   staging_path_ = (p.parent_path() / (staging_prefix(p) + std::to_string(::getpid()))).string();
+  remember_staged_name(staging_path_, final_path_);
   out_.open(staging_path_, std::ios::binary);
   if (!out_) fail(final_path_, "cannot write file (is the folder there and writable?)");
 }

@@ -484,9 +484,9 @@ TEST(CliSlam, DenseStaticMapLeavesTheMoversOut) {
 
   // Bad input: one error line, nothing written.
   const std::string none = temp_path("none") + ".ply";
-  expect_one_error_line(
-      depot("slam run " + dataset + " -q -o " + temp_path("o") + ".txt --dense-map " + none),
-      "--dense-mask rejection: mode orb leaves no moving mask");
+  expect_one_error_line(depot("slam run " + dataset + " -q -o " + temp_path("o") +
+                              ".txt --dense-mask rejection --dense-map " + none),
+                        "--dense-mask rejection: mode orb leaves no moving mask");
   expect_one_error_line(
       depot("slam run " + dataset + " -q -o " + temp_path("o") + ".txt --dense-voxel 0.05"),
       "--dense-voxel: has no effect without --dense-map");

@@ -4,6 +4,9 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -11,6 +14,8 @@
 #include "common/error.h"
 #include "eval/ate.h"
 #include "eval/matched_trajectories.h"
+#include "slam/data/map.h"
+#include "slam/io/map_file.h"
 #include "slam/io/settings.h"
 #include "slam/io/tum_sequence.h"
 #include "slam/system/system.h"
@@ -43,6 +48,11 @@ Pass localise(slam::System& system, slam::TumSequence& sequence) {
   return pass;
 }
 
+std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
 bool tracked(slam::TrackingState s) {
   return s == slam::TrackingState::kOk || s == slam::TrackingState::kRelocalized;
 }
@@ -66,7 +76,19 @@ TEST(SlamMap, ASavedMapLocalisesExactlyAsTheMapInMemory) {
   mapper.finish();
   const std::vector<StampedPose> mapped = mapper.trajectory();
   mapper.save_map(map_path);
-  const size_t keyframes = mapper.n_keyframes(), points = mapper.n_map_points();
+  const size_t keyframes = mapper.n_keyframes();
+  // What the file holds: the points keyframes observe (none of the points
+  // whose observations were culled).
+  slam::Map saved_map;
+  slam::ScaleLevels saved_levels;
+  size_t points = 0;
+  {
+    std::lock_guard<std::mutex> lock(saved_map.mutex());
+    points = slam::load_map_file_as_saved(map_path, saved_levels, saved_map).points;
+    for (const slam::MapPoint* mp : saved_map.map_points())
+      EXPECT_GT(mp->n_observations(), 0) << "point " << mp->id << " is saved but unobserved";
+  }
+  EXPECT_LE(points, mapper.n_map_points());
 
   // Localise again in the map in memory, and in the map loaded from the file.
   mapper.start_localisation();
@@ -75,9 +97,15 @@ TEST(SlamMap, ASavedMapLocalisesExactlyAsTheMapInMemory) {
   loaded.load_map(map_path);
   EXPECT_EQ(loaded.n_keyframes(), keyframes);
   EXPECT_EQ(loaded.n_map_points(), points);
+  // Localisation leaves the map as it was, to the byte: the points'
+  // visible/found counters included (the loaded map saved before and after).
+  const std::string before = map_path + ".before", after = map_path + ".after";
+  loaded.save_map(before);
   loaded.start_localisation();
   const Pass from_file = localise(loaded, sequence);
-  std::filesystem::remove(map_path);
+  loaded.save_map(after);
+  EXPECT_EQ(read_bytes(after), read_bytes(before)) << "localisation changed the loaded map";
+  for (const std::string& p : {before, after, map_path}) std::filesystem::remove(p);
 
   // Localisation changed neither map.
   EXPECT_EQ(mapper.n_keyframes(), keyframes);
@@ -100,8 +128,7 @@ TEST(SlamMap, ASavedMapLocalisesExactlyAsTheMapInMemory) {
   // Against the truth, as the mapping pass is.
   const auto gt = read_tum_trajectory(depot_static() + "/groundtruth.txt");
   auto ate = [&](const std::vector<StampedPose>& t) {
-    return eval::compute_ate(eval::match_trajectories(gt, t, {}, "gt", "estimate"))
-        .statistics.rmse;
+    return eval::compute_ate(eval::match_trajectories(gt, t, {}, "gt", "estimate")).statistics.rmse;
   };
   const double ate_localised = ate(localised), ate_mapped = ate(mapped);
   std::printf(

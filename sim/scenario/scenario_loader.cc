@@ -37,16 +37,27 @@ void scale_camera(CameraIntrinsics& c, int width) {
 namespace {
 
 // Typed access to a YAML map with file:line errors and unknown-key checks.
+// Where a scenario's values came from: a line of its file, or a --set
+// option (an override's value has no line of its own in the file).
+struct Source {
+  std::string file;
+  std::vector<std::pair<YAML::Node, std::string>> overrides;  // value node, "--set key=value"
+
+  std::string where(const YAML::Node& n) const {
+    for (const auto& [node, option] : overrides)
+      if (node.is(n)) return option;
+    return file + ":" + std::to_string(n.Mark().line + 1);
+  }
+};
+
 class Fields {
  public:
-  Fields(const YAML::Node& node, const std::string& file, const std::string& what)
-      : node_(node), file_(file) {
+  Fields(const YAML::Node& node, const Source& source, const std::string& what)
+      : node_(node), source_(source), file_(source.file) {
     if (!node.IsMap()) fail(where(node), what + " must be a map");
   }
 
-  std::string where(const YAML::Node& n) const {
-    return file_ + ":" + std::to_string(n.Mark().line + 1);
-  }
+  std::string where(const YAML::Node& n) const { return source_.where(n); }
   std::string where() const { return where(node_); }
 
   void allow_only(std::initializer_list<const char*> keys) const {
@@ -143,6 +154,7 @@ class Fields {
 
  private:
   YAML::Node node_;
+  const Source& source_;
   std::string file_;
 };
 
@@ -285,8 +297,28 @@ ActorSpec read_actor(const Fields& f, size_t index, uint64_t seed) {
 Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>& overrides) {
   YAML::Node root = load_yaml_file(path, "scenario file");
   if (!root || root.IsNull()) fail(path, "empty scenario file");
-  for (const auto& o : overrides) apply_yaml_override(root, o, path + " (--set " + o.key + ")");
-  Fields top(root, path, "scenario");
+  Source source{path, {}};
+  for (const auto& o : overrides) {
+    const std::string option = path + ": --set " + o.key + "=" + o.value;
+    apply_yaml_override(root, o, option);
+    // The value node the override put in (reset, not assignment, walks
+    // yaml-cpp nodes without overwriting them).
+    YAML::Node node(root);
+    size_t start = 0;
+    while (node.IsMap()) {
+      const size_t dot = o.key.find('.', start);
+      const std::string part = o.key.substr(start, dot == std::string::npos ? dot : dot - start);
+      const YAML::Node child = node[part];
+      if (!child) break;
+      node.reset(child);
+      if (dot == std::string::npos) {
+        source.overrides.emplace_back(node, option);
+        break;
+      }
+      start = dot + 1;
+    }
+  }
+  Fields top(root, source, "scenario");
   top.allow_only({"name", "description", "scene", "classes", "seed", "seed_world", "frames",
                   "shadows", "dynamic_load", "style", "actors_style", "props_style",
                   "asset_catalog", "camera", "motion", "timestamps", "sensor", "camera_cover",
@@ -323,21 +355,21 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
   s.props_style = style("props_style", all);
 
   if (top.has("camera"))
-    read_camera(Fields(top.node("camera"), path, "camera"), s.camera);
+    read_camera(Fields(top.node("camera"), source, "camera"), s.camera);
   else
-    read_camera(Fields(YAML::Node(YAML::NodeType::Map), path, "camera"), s.camera);
+    read_camera(Fields(YAML::Node(YAML::NodeType::Map), source, "camera"), s.camera);
   if (!top.has("motion")) fail(top.where(), "missing 'motion'");
-  read_motion(Fields(top.node("motion"), path, "motion"), s.motion);
+  read_motion(Fields(top.node("motion"), source, "motion"), s.motion);
   if (top.has("timestamps"))
-    read_timestamps(Fields(top.node("timestamps"), path, "timestamps"), s.timestamps);
-  if (top.has("sensor")) read_sensor(Fields(top.node("sensor"), path, "sensor"), s.sensor);
+    read_timestamps(Fields(top.node("timestamps"), source, "timestamps"), s.timestamps);
+  if (top.has("sensor")) read_sensor(Fields(top.node("sensor"), source, "sensor"), s.sensor);
   if (top.has("camera_cover")) s.camera_cover = read_camera_cover(top, s);
 
   if (YAML::Node actors = top.node("actors")) {
     if (!actors.IsSequence()) fail(top.where(actors), "'actors' must be a list");
     size_t i = 0;
     for (const auto& node : actors)
-      s.written_actors.push_back(read_actor(Fields(node, path, "actor"), i++, s.seed));
+      s.written_actors.push_back(read_actor(Fields(node, source, "actor"), i++, s.seed));
   }
   // Cross-references: unique names, push/sit targets exist and are pushables.
   std::set<std::string> names;

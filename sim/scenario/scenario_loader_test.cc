@@ -46,10 +46,16 @@ TEST(ScenarioActorsStyle, DefaultsToMeshAndTakesPrimitive) {
   EXPECT_EQ(load_scenario(kWalking).actors_style, "mesh");
   EXPECT_EQ(load_scenario(kWalking, {{"actors_style", "primitive"}}).actors_style, "primitive");
   const std::string error = error_of([] { load_scenario(kWalking, {{"actors_style", "clay"}}); });
-  EXPECT_NE(error.find("depot_walking_xyz.yaml"), std::string::npos) << error;
-  EXPECT_NE(error.find("unknown actors_style 'clay' (expected primitive or mesh)"),
+  // The option is to blame, not a line of the file it changes.
+  EXPECT_NE(error.find("depot_walking_xyz.yaml: --set actors_style=clay: unknown actors_style "
+                       "'clay' (expected primitive or mesh)"),
             std::string::npos)
       << error;
+  EXPECT_EQ(error.find(".yaml:1"), std::string::npos) << error;
+  const std::string nested = error_of([] {
+    load_scenario(kWalking, {{"sensor.rgb_noise", "loud"}});
+  });
+  EXPECT_NE(nested.find("--set sensor.rgb_noise=loud"), std::string::npos) << nested;
 }
 
 TEST(ScenarioPropsStyle, DefaultsToMeshAndTakesPrimitive) {

@@ -70,7 +70,13 @@ TEST(DetectorConfig, ShippedYolov5sExpectsTheUsersModelBesideIt) {
       make_dnn_detector(c);
       FAIL() << "no error";
     } catch (const Error& e) {
-      EXPECT_EQ(std::string(e.what()), c.model + ": model file not found");
+      EXPECT_EQ(std::string(e.what()).rfind(c.model + ": model file not found (no YOLOv5 model "
+                                                      "ships with depot-slam: export one with",
+                                            0),
+                0u)
+          << e.what();
+      EXPECT_NE(std::string(e.what()).find("export.py --weights yolov5s.pt --include onnx"),
+                std::string::npos);
     }
   }
 }

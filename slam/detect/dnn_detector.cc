@@ -1,6 +1,10 @@
 #include "slam/detect/dnn_detector.h"
 
+#include <unistd.h>
+
 #include <utility>
+
+#include "common/error.h"
 
 #include "slam/detect/class_names.h"
 #include "slam/detect/dnn_model.h"
@@ -13,6 +17,11 @@ DnnDetector::DnnDetector(std::string kind, const DetectorConfig& config)
   params_.model = config.model;
   params_.names_path = config.names;
   params_.confidence = config.confidence;
+  if (config.type == "yolov5" && !config.model.empty() && ::access(config.model.c_str(), F_OK) != 0)
+    fail(config.model,
+         "model file not found (no YOLOv5 model ships with depot-slam: export one with "
+         "ultralytics yolov5, `python export.py --weights yolov5s.pt --include onnx --imgsz 640`, "
+         "and put it there, or point the detector YAML's `model` at yours)");
   require_file(config.model, "model file");
 }
 

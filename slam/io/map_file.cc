@@ -11,6 +11,7 @@
 #include "common/error.h"
 #include "common/staged_file.h"
 #include "slam/data/map_point.h"
+#include "slam/place/vocabulary_file.h"
 
 namespace depot::slam {
 namespace {
@@ -93,14 +94,19 @@ void save_map_file(const Map& map, const PinholeCamera& camera, const ScaleLevel
       const cv::Vec3b colour = i < f.colours.size() ? f.colours[i] : cv::Vec3b(0, 0, 0);
       out.put_bytes(colour.val, 3);
       const MapPoint* mp = kf->map_points[i];
-      out.put<int64_t>(mp && !mp->bad ? mp->id : -1);
+      out.put<int64_t>(mp && !mp->bad && mp->n_observations() > 0 ? mp->id : -1);
     }
     for (size_t i = 0; i < f.size(); ++i)
       out.put_bytes(f.descriptors.ptr<uint8_t>(static_cast<int>(i)), kDescriptorBytes);
   }
 
-  out.put<uint32_t>(static_cast<uint32_t>(map.n_map_points()));
-  for (const MapPoint* mp : map.map_points()) {
+  // A point no keyframe observes any more (its observations culled) is no
+  // part of the map: neither saved, counted by `map info`, nor exported.
+  std::vector<const MapPoint*> points;
+  for (const MapPoint* mp : map.map_points())
+    if (!mp->bad && mp->n_observations() > 0) points.push_back(mp);
+  out.put<uint32_t>(static_cast<uint32_t>(points.size()));
+  for (const MapPoint* mp : points) {
     out.put<int64_t>(mp->id);
     for (int k = 0; k < 3; ++k) out.put<double>(mp->position[k]);
     out.put<int64_t>(mp->reference && !mp->reference->bad ? mp->reference->id : -1);
@@ -283,8 +289,9 @@ MapFileInfo load_map_file(const std::string& path, const PinholeCamera& camera,
   std::string bytes;
   MapFileInfo info = read_header(path, bytes);
   if (info.vocabulary != vocabulary_identity)
-    fail(path, "map built with another vocabulary (identity " + std::to_string(info.vocabulary) +
-                   ", this run's is " + std::to_string(vocabulary_identity) +
+    fail(path, "map built with another vocabulary (identity " +
+                   format_vocabulary_identity(info.vocabulary) + ", this run's is " +
+                   format_vocabulary_identity(vocabulary_identity) +
                    "; run with the vocabulary that made it, --vocabulary F)");
   if (!same_camera(info.camera, camera))
     fail(path, "map made with another camera (" + describe(info.camera) + "; this dataset's is " +

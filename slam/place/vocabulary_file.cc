@@ -1,5 +1,6 @@
 #include "slam/place/vocabulary_file.h"
 
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -112,6 +113,12 @@ std::shared_ptr<const Vocabulary> load_vocabulary_shared(const std::string& path
 uint32_t vocabulary_identity(const Vocabulary& vocabulary) {
   const std::string bytes = serialise(vocabulary);
   return crc32_of(bytes, bytes.size() - 4);
+}
+
+std::string format_vocabulary_identity(uint32_t identity) {
+  char text[9];
+  std::snprintf(text, sizeof(text), "%08x", identity);
+  return text;
 }
 
 std::string default_vocabulary_path() {

@@ -30,6 +30,9 @@ std::shared_ptr<const Vocabulary> load_vocabulary_shared(const std::string& path
 // CRC-32 of the vocabulary's file bytes.
 uint32_t vocabulary_identity(const Vocabulary& vocabulary);
 
+// An identity as every message shows it: eight hex digits ("0a1b2c3d").
+std::string format_vocabulary_identity(uint32_t identity);
+
 // $DEPOT_VOCABULARY when set, otherwise the vocabulary the build trained
 // (build/vocabulary/depot_orb.voc).
 std::string default_vocabulary_path();

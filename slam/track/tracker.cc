@@ -338,9 +338,12 @@ void Tracker::update_local_map(Frame& frame) {
 
 bool Tracker::track_local_map(Frame& frame, int& inliers, int& n_local) {
   update_local_map(frame);
+  // The visible/found counters steer the mapper's point culling; a
+  // localisation-only run leaves the loaded map exactly as it was.
+  const int counted = localisation_only_ ? 0 : 1;
   for (MapPoint* mp : frame.map_points)
     if (mp && !mp->bad) {
-      mp->visible++;
+      mp->visible += counted;
       mp->last_seen_frame = frame.id;
     }
   std::vector<ProjectedPoint> projected;
@@ -348,7 +351,7 @@ bool Tracker::track_local_map(Frame& frame, int& inliers, int& n_local) {
     if (mp->last_seen_frame == frame.id || mp->bad) continue;
     ProjectedPoint p;
     if (project_into(*mp, frame.T_cw, frame.features, p)) {
-      mp->visible++;
+      mp->visible += counted;
       projected.push_back(p);
     }
   }
@@ -364,7 +367,7 @@ bool Tracker::track_local_map(Frame& frame, int& inliers, int& n_local) {
     MapPoint* mp = frame.map_points[i];
     if (!mp) continue;
     if (!frame.outlier[i]) {
-      mp->found++;
+      mp->found += counted;
       if (mp->n_observations() > 0) ++inliers;
     }
   }

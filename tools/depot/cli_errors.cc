@@ -4,6 +4,8 @@
 #include <filesystem>
 
 #include "common/error.h"
+#include "common/interrupt.h"
+#include "common/staged_names.h"
 
 namespace depot::cli {
 
@@ -60,17 +62,26 @@ int report_parse_error(CLI::App& app, const CLI::ParseError& e) {
   return kExitUsage;
 }
 
+void fail_usage(const std::string& where, const std::string& what) {
+  if (where.empty()) throw CLI::ValidationError(what);
+  throw CLI::ValidationError(where, what);
+}
+
 int report_failure(const std::exception& e) {
+  // Whatever the work threw on its way out, it stopped because it was told to.
+  const int code = interrupt_flag().load() ? kExitInterrupt : kExitError;
   // std::filesystem errors carry the paths apart from the text.
   if (const auto* fe = dynamic_cast<const std::filesystem::filesystem_error*>(&e)) {
     std::string message = fe->code().message();
-    std::fprintf(stderr, "depot: error: %s: %s\n",
-                 fe->path1().empty() ? "file system" : fe->path1().c_str(),
-                 one_line(message).c_str());
-    return kExitError;
+    std::fprintf(
+        stderr, "depot: error: %s: %s\n",
+        fe->path1().empty() ? "file system" : with_final_names(fe->path1().string()).c_str(),
+        one_line(message).c_str());
+    return code;
   }
-  std::fprintf(stderr, "depot: error: %s\n", one_line(e.what()).c_str());
-  return kExitError;
+  // A staged output's temporary name is gone by now: name the final one.
+  std::fprintf(stderr, "depot: error: %s\n", one_line(with_final_names(e.what())).c_str());
+  return code;
 }
 
 }  // namespace depot::cli

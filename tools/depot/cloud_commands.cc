@@ -10,6 +10,7 @@
 
 #include "common/staged_file.h"
 #include "tools/depot/commands.h"
+#include "tools/depot/output_paths.h"
 #include "tools/runner/cloud_eval.h"
 
 namespace depot::cli {
@@ -21,6 +22,13 @@ struct CloudArgs {
 };
 
 void run_cloud_eval(const CloudArgs& a) {
+  OutputPaths outputs;
+  outputs.add_input("CLOUD", a.options.cloud);
+  outputs.add_input("--trajectory", a.options.trajectory);
+  outputs.add_input_folder("--dataset", a.options.dataset);
+  outputs.add_input_folder("--static", a.options.static_dataset);
+  outputs.add_file("--json", a.json);
+  outputs.check();
   if (!a.json.empty()) check_output_file(a.json);
   const runner::CloudScore s = runner::score_static_cloud(a.options);
   std::printf("%s: %zu points (aligned by the trajectory, ATE %.4f m)\n", a.options.cloud.c_str(),

@@ -20,6 +20,7 @@
 #include "eval/trajectory_plot.h"
 #include "slam/io/frame_states_file.h"
 #include "tools/depot/commands.h"
+#include "tools/depot/output_paths.h"
 
 namespace fs = std::filesystem;
 
@@ -93,8 +94,15 @@ void print_outputs(const CommonArgs& args) {
   if (!args.plot_path.empty()) std::printf("  plot           %s\n", args.plot_path.c_str());
 }
 
-// --json and --plot must be writable before the work, not after it.
+// --json and --plot must be writable before the work, not after it, and
+// neither may be the other or an input.
 void check_outputs(const CommonArgs& args) {
+  OutputPaths outputs;
+  outputs.add_input("GT", args.reference_path);
+  outputs.add_input("EST", args.estimate_path);
+  outputs.add_file("--json", args.json_path);
+  outputs.add_file("--plot", args.plot_path);
+  outputs.check();
   if (!args.json_path.empty()) check_output_file(args.json_path);
   if (!args.plot_path.empty()) check_output_file(args.plot_path);
 }

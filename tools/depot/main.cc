@@ -1,5 +1,7 @@
 // depot: simulation, SLAM and evaluation for dynamic farm-depot scenes.
+#include <cmath>
 #include <cstdio>
+#include <string>
 
 #include <glog/logging.h>
 #include <CLI/CLI.hpp>
@@ -10,6 +12,28 @@
 #include "depot_version.h"
 #include "tools/depot/cli_errors.h"
 #include "tools/depot/commands.h"
+
+namespace {
+
+// CLI11's Range lets NaN through (every comparison with it is false), so
+// every number option of every command refuses what is not finite here,
+// once, rather than in each command.
+void refuse_non_finite_numbers(CLI::App& app) {
+  const CLI::Validator finite(
+      [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (end != text.c_str() && !std::isfinite(value))
+          return "'" + text + "' is not a finite number";
+        return "";
+      },
+      "", "finite");
+  for (CLI::Option* option : app.get_options())
+    if (option->get_type_name().find("FLOAT") != std::string::npos) option->check(finite);
+  for (CLI::App* sub : app.get_subcommands({})) refuse_non_finite_numbers(*sub);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   // Our errors name file and problem on one line; OpenCV's own warnings
@@ -31,6 +55,7 @@ int main(int argc, char** argv) {
   depot::cli::register_slam_commands(app);
   depot::cli::register_eval_commands(app);
   depot::cli::register_sweep_commands(app);
+  refuse_non_finite_numbers(app);
   depot::install_interrupt_handler();
 
   try {

@@ -17,8 +17,10 @@
 #include "eval/image_labels.h"
 #include "slam/detect/detector_config.h"
 #include "slam/detect/person_segmenter.h"
+#include "tools/depot/cli_errors.h"
 #include "tools/depot/commands.h"
 #include "tools/depot/detector_options.h"
+#include "tools/depot/output_paths.h"
 #include "tools/runner/detector_calibration.h"
 #include "tools/runner/detector_eval.h"
 #include "tools/runner/segmenter_eval.h"
@@ -60,7 +62,7 @@ struct SegmenterArgs {
 
 void require_input(const std::string& dataset, const std::string& images) {
   if (dataset.empty() && images.empty())
-    fail("depot eval", "give a DATASET, --images LABELS.yaml, or both");
+    fail_usage("", "give a DATASET, --images LABELS.yaml, or both");
   if (!dataset.empty() && !fs::is_directory(dataset)) fail(dataset, "dataset folder not found");
 }
 
@@ -74,12 +76,20 @@ void run_detector_eval(DetectorArgs& a) {
   const std::string& dataset = a.detector.dataset;
   require_input(dataset, a.images);
   if (type == "sim" && dataset.empty())
-    fail("--detector sim", "needs a simulated DATASET (it reads its boxes.txt), not only --images");
-  if (type == "file") fail("--detector file", "is not scored here (score the detector itself)");
+    fail_usage("--detector sim",
+               "needs a simulated DATASET (it reads its boxes.txt), not only --images");
+  if (type == "file")
+    fail_usage("--detector file", "is not scored here (score the detector itself)");
   // Everything that can be refused is refused before the first frame.
   const eval::ClassMapping mapping = runner::class_mapping_for(type, a.class_map);
   std::optional<eval::ImageLabels> labels;
   if (!a.images.empty()) labels = eval::read_image_labels(a.images);
+  OutputPaths outputs;
+  outputs.add_input("--images", a.images);
+  outputs.add_input_folder("DATASET", dataset);
+  outputs.add_file("--json", a.json);
+  outputs.add_folder("--report", a.report);
+  outputs.check();
   std::unique_ptr<slam::Detector> detector = runner::make_detector(a.detector, type);
   std::optional<StagedFile> json;
   if (!a.json.empty()) json.emplace(a.json);
@@ -146,7 +156,7 @@ void run_calibrate(CalibrateArgs& a) {
   if (type == "sim") {
     // The simulated detector fitted to itself: a check of the fit.
     if (a.datasets.size() != 1)
-      fail("--detector sim", "calibrates against one DATASET (the one it reads)");
+      fail_usage("--detector sim", "calibrates against one DATASET (the one it reads)");
     runner::check_calibration_dataset(a.datasets.front());
     a.detector.dataset = a.datasets.front();
     request.base = runner::sim_detector_config(a.detector);

@@ -15,6 +15,7 @@
 #include "eval/keypoint_score.h"
 #include "eval/report_json.h"
 #include "tools/depot/commands.h"
+#include "tools/depot/output_paths.h"
 
 namespace depot::cli {
 namespace {
@@ -39,6 +40,11 @@ nlohmann::json ratio_json(double v) {
 }
 
 void run_rejection_eval(const RejectionArgs& a) {
+  OutputPaths outputs;
+  outputs.add_input("KEYPOINTS", a.keypoints);
+  outputs.add_input_folder("DATASET", a.dataset);
+  outputs.add_file("--json", a.json);
+  outputs.check();
   if (!a.json.empty()) check_output_file(a.json);
   const eval::KeypointFileScore result =
       eval::score_dataset_keypoints(a.dataset, a.keypoints, static_cast<float>(a.scale_factor));

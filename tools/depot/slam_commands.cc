@@ -10,8 +10,10 @@
 #include "common/tum_io.h"
 #include "common/yaml_overrides.h"
 #include "slam/io/frame_states_file.h"
+#include "tools/depot/cli_errors.h"
 #include "tools/depot/commands.h"
 #include "tools/depot/detector_options.h"
+#include "tools/depot/output_paths.h"
 #include "tools/depot/system_run_command.h"
 #include "tools/runner/rejection_overlay.h"
 #include "tools/runner/slam_runner.h"
@@ -46,8 +48,8 @@ void check_options_used_by_mode(const std::string& mode, const CLI::App& cmd) {
       {"--segmenter", m == slam::RejectionMode::kMasked}};
   for (const auto& o : options)
     if (!o.used && cmd.count(o.option))
-      fail(o.option, std::string("has no effect in --mode ") + mode +
-                         " (drop it, or choose a mode that uses it)");
+      fail_usage(o.option, std::string("has no effect in --mode ") + mode +
+                               " (drop it, or choose a mode that uses it)");
 }
 
 struct RunArgs {
@@ -58,6 +60,48 @@ struct RunArgs {
   std::string system;
 };
 
+// --dense-mask's default follows the mode: the rejection's masks where it
+// makes them, else none (plain orb and orb+lk make none), said once.
+void choose_dense_mask(RunArgs& a, const CLI::App& cmd) {
+  if (a.options.dense_map.empty()) return;
+  const slam::RejectionMode m = slam::parse_rejection_mode(a.options.mode);
+  const bool masks = m != slam::RejectionMode::kOrb && m != slam::RejectionMode::kOrbLk;
+  if (cmd.count("--dense-mask")) {
+    if (a.options.dense_mask == "rejection" && !masks)
+      fail_usage("--dense-mask rejection",
+                 "mode " + a.options.mode +
+                     " leaves no moving mask (orb+yolo, full and masked do); give --dense-mask "
+                     "labels or none");
+    return;
+  }
+  if (masks) return;
+  a.options.dense_mask = "none";
+  if (!a.options.quiet)
+    std::fprintf(stderr,
+                 "depot slam run: mode %s rejects nothing, so the dense map keeps every pixel "
+                 "(--dense-mask labels leaves a simulated dataset's movers out)\n",
+                 a.options.mode.c_str());
+}
+
+// --detector-set keys are checked against the simulated detector's table
+// before any work: a wrong key is a wrong command line, not a failed run.
+void check_detector_settings(const runner::RunOptions& o) {
+  if (o.detector_overrides.empty()) return;
+  const std::string type = o.detector.empty() ? "sim" : o.detector;
+  if (type != "sim")
+    fail_usage("--detector-set", "applies to the simulated detector only (edit the " + type +
+                                     " detector's YAML instead)");
+  // The file's own problems are a failed read (exit 1); the overrides' a usage error.
+  const slam::SimDetectorConfig base = slam::load_sim_detector_config_file(
+      o.detector_config.empty() ? runner::default_detector_config("sim") : o.detector_config);
+  try {
+    slam::load_sim_detector_config(overrides_to_node(o.detector_overrides, "--detector-set"),
+                                   "--detector-set", base);
+  } catch (const Error& e) {
+    throw CLI::ValidationError(e.what());
+  }
+}
+
 // Another program as the system: only the options it can honour.
 void run_slam_system(const RunArgs& a, const CLI::App& cmd) {
   for (const CLI::Option* option : cmd.get_options()) {
@@ -65,8 +109,15 @@ void run_slam_system(const RunArgs& a, const CLI::App& cmd) {
     if (option->count() == 0 || name == "dataset" || name == "--output" || name == "--system" ||
         name == "--keypoints" || name == "--quiet")
       continue;
-    fail(name, "has no effect with --system (the system's own file sets how it runs)");
+    fail_usage(name, "has no effect with --system (the system's own file sets how it runs)");
   }
+  OutputPaths outputs;
+  outputs.add_input_folder("the dataset", a.options.dataset);
+  outputs.add_file("-o", a.output);
+  outputs.add_file("-o (its states file)", slam::frame_states_path(a.output));
+  outputs.add_file("-o (the system's log)", system_log_path(a.output));
+  outputs.add_file("--keypoints", a.options.keypoints_csv);
+  outputs.check();
   SystemRunArgs s;
   s.dataset = a.options.dataset;
   s.system = a.system;
@@ -81,20 +132,41 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
   check_options_used_by_mode(a.options.mode, cmd);
   if (cmd.count("--segmenter") &&
       a.options.rejection.person_mask == slam::RejectionParams::PersonMask::kDepth)
-    fail("--segmenter", "has no effect with --person-mask depth (choose segmentation or both)");
+    fail_usage("--segmenter",
+               "has no effect with --person-mask depth (choose segmentation or both)");
   if (a.options.dense_map.empty())
     for (const char* option : {"--dense-mask", "--dense-voxel", "--dense-max-depth",
                                "--dense-min-views", "--dense-no-free-space"})
-      if (cmd.count(option)) fail(option, "has no effect without --dense-map");
-  // Every output must be writable before a long run starts, not after it.
+      if (cmd.count(option)) fail_usage(option, "has no effect without --dense-map");
+  if (a.options.localise_only && a.options.load_map.empty())
+    fail_usage("--localise-only", "needs a map to localise in (--load-map M)");
+  if (a.options.localise_only && !a.options.dense_map.empty())
+    fail_usage("--dense-map",
+               "has nothing to fuse with --localise-only (a localisation run adds no keyframes, "
+               "and a saved map keeps no depth images; make the dense map in the run that builds "
+               "the map)");
+  choose_dense_mask(a, cmd);
+  check_detector_settings(a.options);
+  // Every output must be writable before a long run starts, not after it,
+  // and no two of them (or an input) may be one file.
   const std::string states_path = slam::frame_states_path(a.output);
-  const std::string* outputs[] = {&a.output,
-                                  &states_path,
-                                  &a.keyframes,
-                                  &a.options.stats_csv,
-                                  &a.options.keypoints_csv,
-                                  &a.options.dense_map};
-  for (const std::string* path : outputs)
+  OutputPaths outputs;
+  outputs.add_input_folder("the dataset", a.options.dataset);
+  outputs.add_input("--load-map", a.options.load_map);
+  outputs.add_input("--settings", a.options.settings);
+  outputs.add_input("--vocabulary", a.options.vocabulary);
+  outputs.add_file("-o", a.output);
+  outputs.add_file("-o (its states file)", states_path);
+  outputs.add_file("--keyframes", a.keyframes);
+  outputs.add_file("--stats", a.options.stats_csv);
+  outputs.add_file("--keypoints", a.options.keypoints_csv);
+  outputs.add_file("--dense-map", a.options.dense_map);
+  outputs.add_file("--save-map", a.options.save_map);
+  outputs.add_folder("--overlays", a.options.overlays);
+  outputs.check();
+  for (const std::string* path : std::initializer_list<const std::string*>{
+           &a.output, &states_path, &a.keyframes, &a.options.stats_csv, &a.options.keypoints_csv,
+           &a.options.dense_map, &a.options.save_map})
     if (!path->empty()) check_output_file(*path);
   if (!a.options.overlays.empty())
     check_replaceable(a.options.overlays, runner::overlay_folder_kind(), false);
@@ -135,8 +207,15 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
       "%.1f ms over %d lost frames\n",
       s.loops.empty() ? "" : ")", s.global_adjustments, s.loops_refused, s.lost_ms, s.lost);
   if (!a.options.dense_map.empty())
-    std::printf("dense map: %zu points from %d keyframes (masks: %s), wrote %s\n", s.dense_points,
-                s.dense_keyframes, a.options.dense_mask.c_str(), a.options.dense_map.c_str());
+    std::printf("dense map: %zu points from %d keyframes (masks: %s%s%s), wrote %s\n",
+                s.dense_points, s.dense_keyframes, a.options.dense_mask.c_str(),
+                s.dense_left_out ? "; left out: " : "",
+                s.dense_left_out ? (std::to_string(s.dense_left_out) +
+                                    " of the loaded map's keyframes, with no frame in this "
+                                    "dataset or no rejection mask of this run")
+                                       .c_str()
+                                 : "",
+                a.options.dense_map.c_str());
   if (a.options.rate_hz > 0) {
     std::printf("input %g Hz, run-ahead %s: %zu frames handled after their turn\n",
                 a.options.rate_hz, a.options.run_ahead ? "on" : "off", s.late_frames);

@@ -18,6 +18,7 @@
 #include "slam/io/tum_sequence.h"
 #include "slam/place/vocabulary_file.h"
 #include "slam/place/vocabulary_training.h"
+#include "tools/depot/cli_errors.h"
 #include "tools/depot/commands.h"
 
 namespace depot::cli {
@@ -69,6 +70,7 @@ std::vector<TrainingImage> list_images(const TrainArgs& a) {
 }
 
 void train(const TrainArgs& a) {
+  if (a.image_folders.empty() && a.datasets.empty()) fail_usage("", "give --images or --dataset");
   check_output_file(a.output);
   const std::vector<TrainingImage> images = list_images(a);
   if (images.empty()) fail("depot slam vocabulary train", "give --images or --dataset");

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <vector>
 
 #include <assimp/scene.h>
@@ -14,6 +16,7 @@
 #include "common/percentile.h"
 #include "common/progress.h"
 #include "common/tum_io.h"
+#include "dataset/dataset_info.h"
 #include "dataset/objects.h"
 #include "eval/alignment.h"
 #include "eval/ate.h"
@@ -21,6 +24,7 @@
 #include "eval/matched_trajectories.h"
 #include "eval/motion_truth.h"
 #include "slam/dense/dense_cloud.h"
+#include "slam/io/ply_file.h"
 #include "slam/io/settings.h"
 #include "slam/io/tum_sequence.h"
 
@@ -30,7 +34,9 @@ namespace depot::runner {
 namespace {
 
 std::vector<Eigen::Vector3d> read_cloud(const std::string& path) {
-  if (!fs::is_regular_file(path)) fail(path, "no such file");
+  // assimp pads a cut file's missing rows with zeros: our own check of the
+  // header against the body comes first.
+  const slam::PlyCheck ply = slam::check_ply_file(path);
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFile(path, 0);
   if (!scene)
@@ -46,7 +52,34 @@ std::vector<Eigen::Vector3d> read_cloud(const std::string& path) {
     }
   }
   if (points.empty()) fail(path, "has no points");
+  if (ply.only_vertices && points.size() != ply.vertices)
+    fail(path, "assimp read " + std::to_string(points.size()) +
+                   " points where the header declares " + std::to_string(ply.vertices));
   return points;
+}
+
+// --static must name the same scenario and seed rendered with nothing living
+// in it and exact depth (`sim render ... --load 0 --ideal`): anything else
+// would score the cloud against a surface with people in it, or noise.
+void check_static_render(const std::string& static_dataset, const std::string& dataset) {
+  const std::string not_static = "is not a static render of " + dataset + ": ";
+  const std::string how = " (render it with `depot sim render SCENARIO --load 0 --ideal`)";
+  const std::optional<dataset::DatasetInfo> info = dataset::read_info(static_dataset);
+  if (!info) fail(static_dataset, not_static + "it has no info.json (the simulator writes one)");
+  if (!info->dynamic_load || *info->dynamic_load != 0.0) {
+    char load[32] = "not stated";
+    if (info->dynamic_load) std::snprintf(load, sizeof(load), "%g", *info->dynamic_load);
+    fail(static_dataset, not_static + "its dynamic_load is " + load + how);
+  }
+  if (info->sensor && *info->sensor != "ideal")
+    fail(static_dataset,
+         not_static + "its depth is the " + *info->sensor + " sensor model's, not exact" + how);
+  const std::optional<dataset::DatasetInfo> of = dataset::read_info(dataset);
+  auto named = [](const dataset::DatasetInfo& i) {
+    return i.scenario + " seed " + (i.seed ? std::to_string(*i.seed) : "?");
+  };
+  if (of && (of->scenario != info->scenario || of->seed != info->seed))
+    fail(static_dataset, not_static + "it renders " + named(*info) + ", the dataset " + named(*of));
 }
 
 // The true camera-to-world pose of each frame, by rgb timestamp (the
@@ -110,6 +143,7 @@ CloudScore score_static_cloud(const CloudScoreOptions& o) {
   cv::Mat bgr, depth;
   std::vector<double> distances;
   if (!o.static_dataset.empty()) {
+    check_static_render(o.static_dataset, o.dataset);
     // The true static surface: the static render's exact depth at its true
     // poses, 5 mm voxels (finer than any map's).
     slam::TumSequence scene(o.static_dataset);
@@ -124,7 +158,9 @@ CloudScore score_static_cloud(const CloudScoreOptions& o) {
     fine.min_views = 1;
     fine.free_space = false;  // nothing moves in the static render
     slam::DenseCloud surface(scene_camera, fine);
+    Progress surface_progress("eval cloud: static surface", scene.size(), !o.quiet);
     for (size_t f = 0; f < scene.size(); f += o.static_every) {
+      surface_progress.update(f);
       const double t = scene.entry(f).rgb_timestamp;
       const Pose* T_wc = scene_poses.at(t);
       if (!T_wc) continue;
@@ -137,6 +173,8 @@ CloudScore score_static_cloud(const CloudScoreOptions& o) {
       scene.load(f, bgr, depth);
       surface.add_view(*T_wc, depth, bgr);
     }
+    surface_progress.update(scene.size());
+    surface_progress.finish();
     const std::vector<slam::PlyPoint> reference = surface.points();
     if (reference.empty()) fail(o.static_dataset, "has no depth to make a surface of");
     score.surface_points = reference.size();

@@ -24,11 +24,17 @@ DenseMapResult write_dense_map(const std::string& path, const slam::TumSequence&
   cv::Mat bgr, depth;
   for (const StampedPose& keyframe : keyframes) {
     const auto frame = frame_at.find(keyframe.timestamp);
-    if (frame == frame_at.end()) continue;
+    if (frame == frame_at.end()) {
+      ++result.without_frame;
+      continue;
+    }
     cv::Mat moving;
     if (mask == DenseMask::kRejection) {
       const auto found = rejection_masks.find(keyframe.timestamp);
-      if (found == rejection_masks.end()) continue;
+      if (found == rejection_masks.end()) {
+        ++result.without_mask;
+        continue;
+      }
       moving = found->second;
     } else if (mask == DenseMask::kLabels) {
       moving = truth->moving_mask(keyframe.timestamp);
@@ -37,7 +43,16 @@ DenseMapResult write_dense_map(const std::string& path, const slam::TumSequence&
     cloud.add_view(keyframe.pose, depth, bgr, moving);
     ++result.keyframes;
   }
+  if (result.keyframes == 0)
+    fail(path, "no keyframe to fuse: of " + std::to_string(keyframes.size()) + ", " +
+                   std::to_string(result.without_frame) + " have no frame in this dataset and " +
+                   std::to_string(result.without_mask) +
+                   " no rejection mask of this run (a loaded map's; --dense-mask labels or none "
+                   "fuses those of this dataset)");
   const std::vector<slam::PlyPoint> points = cloud.points();
+  if (points.empty())
+    fail(path, "the " + std::to_string(result.keyframes) +
+                   " keyframes fused leave no point (seen from too few views? --dense-min-views)");
   slam::write_ply(path, points, "views");
   result.points = points.size();
   return result;

@@ -25,13 +25,17 @@ DenseMask parse_dense_mask(const std::string& name);
 
 struct DenseMapResult {
   size_t points = 0;
-  int keyframes = 0;  // keyframes fused (those of this run's frames)
+  int keyframes = 0;      // keyframes fused
+  int without_frame = 0;  // left out: their frame is not in the sequence (a loaded map's)
+  int without_mask = 0;   // left out: no rejection mask of this run (a loaded map's)
 };
 
 // Keyframes whose frame is not in `sequence` (from a loaded map) are left
 // out. With kRejection `rejection_masks` holds each keyframe's mask by
 // timestamp (one missing: its keyframe is left out); with kLabels `truth`
-// gives them. Writes `path` through a staged file.
+// gives them. Writes `path` through a staged file. Throws depot::Error
+// naming `path`, and writes nothing, when no keyframe could be fused or the
+// fused views leave no point.
 DenseMapResult write_dense_map(const std::string& path, const slam::TumSequence& sequence,
                                const slam::PinholeCamera& camera,
                                const std::vector<StampedPose>& keyframes, DenseMask mask,

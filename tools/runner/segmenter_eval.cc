@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
 #include "common/error.h"
 #include "common/interrupt.h"
@@ -106,13 +107,17 @@ std::string SegmenterEval::text() const {
     std::vector<double> ious;
     for (const SegmenterFrame& f : frames)
       if (f.counts.true_positive + f.counts.false_negative > 0) ious.push_back(f.counts.iou());
+    // No frame with people has no IoU to take a percentile of ("-", not 0).
+    auto of_ious = [&ious](double p) {
+      return ious.empty() ? std::numeric_limits<double>::quiet_NaN() : percentile(ious, p);
+    };
     char line[512];
     std::snprintf(line, sizeof(line),
                   "  person mask IoU: mean %s over %zu frames with people (median %s, p10 %s, "
                   "p90 %s)\n  pooled pixels: IoU %s, precision %s, recall %s\n",
-                  fixed(mean_iou()).c_str(), ious.size(), fixed(percentile(ious, 0.5)).c_str(),
-                  fixed(percentile(ious, 0.1)).c_str(), fixed(percentile(ious, 0.9)).c_str(),
-                  fixed(t.iou()).c_str(), fixed(t.precision()).c_str(), fixed(t.recall()).c_str());
+                  fixed(mean_iou()).c_str(), ious.size(), fixed(of_ious(0.5)).c_str(),
+                  fixed(of_ious(0.1)).c_str(), fixed(of_ious(0.9)).c_str(), fixed(t.iou()).c_str(),
+                  fixed(t.precision()).c_str(), fixed(t.recall()).c_str());
     out += line;
   }
   char line[256];

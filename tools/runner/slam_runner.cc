@@ -421,6 +421,7 @@ RunSummary run_sequence(const RunOptions& o) {
                         dense_mask, keyframe_masks, truth.get(), o.dense);
     summary.dense_points = cloud.points;
     summary.dense_keyframes = cloud.keyframes;
+    summary.dense_left_out = cloud.without_frame + cloud.without_mask;
   }
   summary.frames = n;
   summary.trajectory = system.trajectory();
@@ -431,10 +432,14 @@ RunSummary run_sequence(const RunOptions& o) {
     const bool abandoned =
         std::any_of(summary.frame_states.begin(), summary.frame_states.end(),
                     [](const auto& f) { return f.state == slam::FrameState::kAbandoned; });
-    fail(o.dataset, std::string(kNoFrameTracked) + ": " +
-                        (abandoned ? "every map started was abandoned (lost within its first "
-                                     "keyframes)"
-                                   : "tracking never initialised (too few keypoints with depth?)"));
+    // With a loaded map no frame initialises a map of its own: each must
+    // relocalise in the loaded one (its place, vocabulary and camera).
+    const std::string why =
+        !o.load_map.empty() ? "no frame relocalised in the loaded map " + o.load_map +
+                                  " (is it a map of this place, seen from these views?)"
+        : abandoned ? "every map started was abandoned (lost within its first keyframes)"
+                    : "tracking never initialised (too few keypoints with depth?)";
+    fail(o.dataset, std::string(kNoFrameTracked) + ": " + why);
   }
   summary.keyframes = system.n_keyframes();
   summary.map_points = system.n_map_points();

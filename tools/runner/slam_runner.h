@@ -113,8 +113,9 @@ struct RunSummary {
   // with run-ahead) had passed when the loop got to them: the tracker lagged.
   size_t late_frames = 0;
   double ba_ms_total = 0;
-  size_t dense_points = 0;                            // points of the dense map (with dense_map)
-  int dense_keyframes = 0;                            // keyframes fused into it
+  size_t dense_points = 0;  // points of the dense map (with dense_map)
+  int dense_keyframes = 0;  // keyframes fused into it
+  int dense_left_out = 0;   // keyframes left out: a loaded map's, no frame or no mask of this run
   std::vector<StampedPose> trajectory;                // the tracked frames only
   std::vector<slam::StampedFrameState> frame_states;  // every frame given
   std::vector<StampedPose> keyframes_trajectory;
