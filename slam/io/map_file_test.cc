@@ -140,7 +140,9 @@ TEST_F(MapFileTest, BadFilesAreOneClearError) {
   expect(load_error(), "not a depot map");
   write(good);
   EXPECT_EQ(load_error(), "");
-  expect(load_error(kVocabulary + 1), "another vocabulary");
+  // Identities in hex, as `map info` and `vocabulary info` print them.
+  expect(load_error(kVocabulary + 1),
+         "another vocabulary (identity 1234abcd, this run's is 1234abce;");
   PinholeCamera other = camera_;
   other.fx += 10;
   expect(load_error(kVocabulary, &other), "another camera");
