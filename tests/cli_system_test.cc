@@ -231,5 +231,148 @@ TEST(CliSystem, ASweepRecordsAFailedSystemAndGoesOn) {
   EXPECT_TRUE(fs::exists(out + "/report/report.html"));
 }
 
+// ---- Nothing a system starts outlives depot; errors name paths that exist ----
+
+// How many processes run exactly `args` (zombies have none).
+int processes_running(const std::string& args) {
+  std::string ps;
+  run_command("ps -eo args | grep -c '^" + args + "$'", &ps);
+  return std::stoi(ps);
+}
+
+// A system that writes an identity pose for every frame of the dataset after
+// `before` (shell commands ending in ';' or '&') ran; the trajectory is $1,
+// the dataset $2.
+std::string identity_system(const std::string& tag, const std::string& before,
+                            const std::string& extra = "") {
+  return write_yaml(tag, "command: [/bin/sh, -c, '" + before +
+                             " awk \"!/^#/ { print \\$1, 0, 0, 0, 0, 0, 0, 1 }\" \"$2/rgb.txt\" "
+                             "> \"$1\"', sh, \"{trajectory}\", \"{dataset}\"]\n" +
+                             extra);
+}
+
+TEST(CliSystem, NothingTheSystemStartedOutlivesTheRun) {
+  // One in its session, one that leaves it (setsid), and the program exits.
+  const std::string system =
+      identity_system("leaves", "sleep 778.125 & setsid sleep 778.25 & (sleep 778.375 &);");
+  const std::string out = temp_path("leaves") + ".txt";
+  const DepotResult r = depot("slam run " + walking() + " --system " + system + " -q -o " + out);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("tracked 12 of 12 frames"), std::string::npos) << r.output;
+  EXPECT_EQ(processes_running("sleep 778.125"), 0);
+  EXPECT_EQ(processes_running("sleep 778.25"), 0) << "setsid escaped the system's process group";
+  EXPECT_EQ(processes_running("sleep 778.375"), 0);
+}
+
+TEST(CliSystem, AKilledDepotsSystemAndScratchGoWithTheNextRun) {
+  // Scratch folders in a temp directory of this test's own, to see them all.
+  const std::string temp = temp_path("tmpdir");
+  fs::create_directories(temp);
+  const std::string marker = temp_path("running");
+  const std::string system = script_system(
+      "killed", "setsid sleep 779.125 & sleep 779.25 & touch " + marker + "; exec sleep 779.375");
+  std::string pid;
+  run_command("TMPDIR=" + temp + " " + depot_binary() + " slam run " + walking() + " --system " +
+                  system + " -q -o " + temp_path("killed") +
+                  ".txt >/dev/null 2>&1 & pid=$!; for i in $(seq 600); do [ -e " + marker +
+                  " ] && break; sleep 0.1; done; kill -9 $pid; wait $pid; echo $pid",
+              &pid);
+  pid = pid.substr(0, pid.find('\n'));
+  ASSERT_TRUE(fs::exists(marker)) << "the system never ran";
+  // Left behind for now: the killed depot's scratch (named with its pid)
+  // and what its system started (the program itself died with depot).
+  std::vector<std::string> scratch;
+  for (const auto& e : fs::directory_iterator(temp)) scratch.push_back(e.path().filename());
+  ASSERT_EQ(scratch.size(), 1u);
+  EXPECT_EQ(scratch[0].rfind("depot-system-" + pid + "-", 0), 0u) << scratch[0];
+  EXPECT_EQ(processes_running("sleep 779.375"), 0) << "the program outlived depot";
+
+  // The next run of any system.
+  std::string printed;
+  const int code = run_command("TMPDIR=" + temp + " " + depot_binary() + " slam run " + walking() +
+                                   " --system " + identity_system("next", "true;") + " -q -o " +
+                                   temp_path("next") + ".txt",
+                               &printed);
+  EXPECT_EQ(code, 0) << printed;
+  EXPECT_EQ(processes_running("sleep 779.125"), 0);
+  EXPECT_EQ(processes_running("sleep 779.25"), 0);
+  EXPECT_TRUE(fs::is_empty(temp)) << "the dead depot's scratch folder is still there";
+}
+
+TEST(CliSystem, ProgressShowsTheSystemsLogUnlessQuiet) {
+  const std::string system = identity_system("progress", "echo frame 12 of 12 tracked;");
+  const std::string name = fs::path(system).stem();
+  const DepotResult r =
+      depot("slam run " + walking() + " --system " + system + " -o " + temp_path("p") + ".txt");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(
+      std::regex_search(r.output, std::regex("system " + name +
+                                             ": ended after [0-9]+ s, 12 of 12 frames in "
+                                             "its trajectory, log: frame 12 of 12 tracked")))
+      << r.output;
+  const DepotResult quiet =
+      depot("slam run " + walking() + " --system " + system + " -q -o " + temp_path("p") + ".txt");
+  ASSERT_EQ(quiet.code, 0) << quiet.output;
+  EXPECT_EQ(quiet.output.find("frame 12 of 12"), std::string::npos) << quiet.output;
+}
+
+// Every absolute path a message names.
+std::vector<std::string> paths_in(const std::string& text) {
+  std::vector<std::string> out;
+  const std::regex path(R"((?:^|[\s(])(/[^\s:()]+))");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), path); it != std::sregex_iterator();
+       ++it)
+    out.push_back((*it)[1]);
+  return out;
+}
+
+TEST(CliSystem, ErrorsNameOnlyPathsThatStillExist) {
+  const std::vector<std::string> systems = {
+      script_system("nothing_written", "exit 0"),
+      script_system("nan_written", "echo 1.0 nan 0 0 0 0 0 1 > \"$1\""),
+      script_system("exit_4", "echo no luck >&2; exit 4"),
+      // Its trajectory is right, the keypoint file it promised is missing.
+      write_yaml("no_keypoints",
+                 "command: [/bin/sh, -c, 'awk \"!/^#/ { print \\$1, 0, 0, 0, 0, 0, 0, 1 }\" "
+                 "\"$1/rgb.txt\" > \"$0\"', \"{trajectory}\", \"{dataset}\", \"{keypoints}\"]\n"),
+  };
+  for (size_t i = 0; i < systems.size(); ++i) {
+    SCOPED_TRACE(systems[i]);
+    const DepotResult r = depot("slam run " + walking() + " --system " + systems[i] + " -q -o " +
+                                temp_path("named") + ".txt");
+    ASSERT_EQ(r.code, 1) << r.output;
+    for (const std::string& p : paths_in(r.output))
+      EXPECT_TRUE(fs::exists(p)) << "names " << p << " which is gone: " << r.output;
+  }
+}
+
+TEST(CliSystem, ASweepLeavesNoProcessNoScratchAndNamesTheFinalLog) {
+  const std::string good = identity_system("sweep_good", "setsid sleep 780.125 &");
+  const std::string bad =
+      script_system("sweep_bad", "setsid sleep 780.25 & echo no map >&2; exit 2");
+  const std::string out = temp_path("sweep_clean");
+  const DepotResult r = depot("sweep run depot_static -o " + out + " --modes system:" + good +
+                              ",system:" + bad + " --seeds 1 --frames 10 --width 160 -q");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(processes_running("sleep 780.125"), 0);
+  EXPECT_EQ(processes_running("sleep 780.25"), 0);
+  int failed = 0;
+  for (const auto& run : fs::directory_iterator(out + "/runs")) {
+    SCOPED_TRACE(run.path().string());
+    EXPECT_FALSE(fs::exists(run.path() / "system")) << "the system's scratch was left";
+    const nlohmann::json j = nlohmann::json::parse(read_text(run.path().string() + "/result.json"));
+    if (j["ok"].get<bool>()) continue;
+    ++failed;
+    const std::string error = j["error"].get<std::string>();
+    EXPECT_NE(
+        error.find("(log " + fs::absolute(run.path() / "system.log").lexically_normal().string() +
+                   " ends: no map)"),
+        std::string::npos)
+        << error;
+    for (const std::string& p : paths_in(error)) EXPECT_TRUE(fs::exists(p)) << error;
+  }
+  EXPECT_EQ(failed, 1);
+}
+
 }  // namespace
 }  // namespace depot::test

@@ -3,6 +3,9 @@
 // same path a sweep takes, its trajectory written in TUM format with the
 // states beside it, and its per-keypoint decisions (when it writes them)
 // scored against a simulated dataset's labels as the built-in modes are.
+#include <sys/ioctl.h>
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -22,18 +25,51 @@ namespace fs = std::filesystem;
 namespace depot::cli {
 namespace {
 
-// A scratch folder of our own, removed when the run ends either way.
-struct ScratchFolder {
-  std::string path;
-  ScratchFolder() {
-    std::string pattern = (fs::temp_directory_path() / "depot-system-XXXXXX").string();
-    if (!mkdtemp(pattern.data())) fail(pattern, "cannot create a scratch folder");
-    path = pattern;
+// The system's progress on one line of stderr, as the built-in run's
+// (common/progress.h): redrawn in place on a terminal, otherwise a line every
+// 10 s and one when it ends (CI logs). Belongs to the thread running it.
+class SystemProgressLine {
+ public:
+  explicit SystemProgressLine(std::string name)
+      : name_(std::move(name)), tty_(isatty(STDERR_FILENO) != 0) {}
+
+  void operator()(const system::SystemProgress& p) {
+    const int decade = static_cast<int>(p.seconds / 10);
+    if (!tty_ && !p.finished && decade == last_decade_) return;
+    last_decade_ = decade;
+    char head[160];
+    std::snprintf(head, sizeof(head), "system %s: %s%.0f s", name_.c_str(),
+                  p.finished ? "ended after " : "", p.seconds);
+    std::string line = head;
+    if (p.poses > 0)
+      line += ", " + std::to_string(p.poses) + " of " + std::to_string(p.frames) +
+              " frames in its trajectory";
+    if (!p.log_line.empty()) line += ", log: " + printable(p.log_line);
+    if (tty_) {
+      // One terminal row, or the redraw would leave the rest behind.
+      winsize size{};
+      const size_t columns =
+          ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 1 ? size.ws_col - 1 : 99;
+      if (line.size() > columns) line.resize(columns);
+      std::fprintf(stderr, "\r%s\033[K%s", line.c_str(), p.finished ? "\n" : "");
+    } else {
+      std::fprintf(stderr, "%s\n", line.c_str());
+    }
+    std::fflush(stderr);
   }
-  ~ScratchFolder() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
+
+ private:
+  // The system's text without control characters (colours, '\r') that
+  // would garble the line.
+  static std::string printable(const std::string& text) {
+    std::string out;
+    for (char c : text) out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? ' ' : c;
+    return out;
   }
+
+  std::string name_;
+  bool tty_;
+  int last_decade_ = 0;
 };
 
 }  // namespace
@@ -66,18 +102,24 @@ void run_external_system(const SystemRunArgs& a) {
   if (!a.quiet)
     std::fprintf(stderr, "depot slam run: %s, system %s (%s); its output goes to %s\n",
                  a.dataset.c_str(), spec.name.c_str(), spec.path.c_str(), log_path.c_str());
-  ScratchFolder scratch;
   system::SystemRunRequest request;
   request.dataset = a.dataset;
-  request.work_dir = scratch.path;
   request.log_path = log_path;
+  if (!a.quiet) request.on_progress = SystemProgressLine(spec.name);
   const system::SystemRunResult r = system::run_system(spec, request);
 
   const std::vector<slam::StampedFrameState> states = system::frame_states(r);
   const slam::TrackedShare share = slam::tracked_share(states);
   eval::KeypointFileScore score;
   const bool scored = spec.writes_keypoints && eval::MotionTruth::available(a.dataset);
-  if (scored) score = eval::score_dataset_keypoints(a.dataset, r.keypoints_path, a.scale_factor);
+  if (scored) {
+    try {
+      score = eval::score_dataset_keypoints(a.dataset, r.keypoints_path, a.scale_factor);
+    } catch (const Error& e) {
+      // Its keypoint file is in the work folder, gone once depot exits.
+      fail("system " + spec.name, system::name_work_paths(r, e.what()));
+    }
+  }
   // Everything read and checked: the outputs appear together.
   const std::string header = "system " + spec.name + " on " + a.dataset;
   StagedFile trajectory(a.output), states_file(states_path);

@@ -36,17 +36,20 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 // trajectory, states and keypoint file into `folder`, its accuracy and
 // rejection into `r`. A system that fails (exit code, time limit, a bad or
 // missing trajectory) is an outcome of the sweep: r.ok = false with the
-// reason and its log's tail; only an interruption throws.
+// reason and its log's tail; only an interruption throws. `folder` is the
+// staged run folder, `final_folder` where it goes: the error names the log
+// there. Its scratch (generated inputs, raw outputs) goes either way.
 void run_system_into(const std::string& dataset, const SweepJob& job, const std::string& folder,
-                     RunRecord& r) {
+                     const std::string& final_folder, RunRecord& r) {
   const fs::path out(folder);
   try {
     const system::SystemSpec spec =
         system::load_system_spec(system::find_system_file(system::system_of_mode(job.mode)));
     system::SystemRunRequest request;
     request.dataset = dataset;
-    request.work_dir = (out / "system").string();
+    request.work_dir = (out / "system").string();  // removed with the result, or on failure
     request.log_path = (out / "system.log").string();
+    request.log_name = (fs::path(final_folder) / "system.log").string();
     const system::SystemRunResult s = system::run_system(spec, request);
     const std::vector<slam::StampedFrameState> states = system::frame_states(s);
     const slam::TrackedShare share = slam::tracked_share(states);
@@ -56,15 +59,19 @@ void run_system_into(const std::string& dataset, const SweepJob& job, const std:
       return f.state == slam::FrameState::kLost;
     }));
     r.median_frame_ms = s.frame_ms;  // from its wall time: it reports none of its own
-    if (spec.writes_keypoints && eval::MotionTruth::available(dataset))
-      add_rejection(eval::score_dataset_keypoints(dataset, s.keypoints_path, 1.2f).score, r);
+    if (spec.writes_keypoints && eval::MotionTruth::available(dataset)) {
+      try {
+        add_rejection(eval::score_dataset_keypoints(dataset, s.keypoints_path, 1.2f).score, r);
+      } catch (const Error& e) {
+        fail("system " + spec.name, system::name_work_paths(s, e.what()));
+      }
+    }
     write_tum_trajectory((out / "trajectory.txt").string(), s.trajectory,
                          "depot sweep run " + job.id + ": system " + spec.name);
     write_text_file_atomic((out / "states.txt").string(),
                            slam::format_frame_states(states, "depot sweep run " + job.id));
     add_accuracy(read_tum_trajectory((fs::path(dataset) / "groundtruth.txt").string()),
                  s.trajectory, (out / "ate.svg").string(), r);
-    fs::remove_all(out / "system");  // its scratch (generated inputs, raw outputs)
   } catch (const Error& e) {
     throw_if_interrupted(job.id);
     r.ok = false;
@@ -200,7 +207,7 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
                                       "ate.svg", "system.log", "keypoints.csv", "system"}};
   StagedDirectory out(layout.run_dir(job.id), kRunFolder, /*overwrite=*/true);
   if (system::is_system_mode(job.mode)) {
-    run_system_into(dataset, job, out.path(), r);
+    run_system_into(dataset, job, out.path(), out.final_path(), r);
     r.seconds = seconds_since(start);
     write_record((fs::path(out.path()) / "result.json").string(), to_json(r));
     out.commit();

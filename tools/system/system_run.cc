@@ -1,21 +1,26 @@
 #include "tools/system/system_run.h"
 
-#include <signal.h>
-#include <sys/wait.h>
+#include <stdlib.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <deque>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
 #include <thread>
 
 #include "common/child_process.h"
 #include "common/error.h"
 #include "common/interrupt.h"
+#include "common/stale_partials.h"
 #include "slam/io/settings.h"
 #include "slam/io/tum_sequence.h"
 
@@ -72,27 +77,80 @@ std::string orbslam_settings(const slam::SlamSettings& s, double fps) {
   return y;
 }
 
-// Stops the system's whole process group: SIGTERM, then SIGKILL after a
-// grace period; reaps the child.
-void stop_group(pid_t pid) {
-  kill(-pid, SIGTERM);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-  int status = 0;
-  while (waitpid(pid, &status, WNOHANG) == 0) {
-    if (std::chrono::steady_clock::now() > deadline) {
-      kill(-pid, SIGKILL);
-      waitpid(pid, &status, 0);
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  kill(-pid, SIGKILL);  // whatever it started and left behind
+std::string with_log(const std::string& reason, const std::string& log_path,
+                     const std::string& log_name) {
+  const std::string last = log_tail(log_path, 1);
+  return last.empty() ? reason + " (log " + log_name + " is empty)"
+                      : reason + " (log " + log_name + " ends: " + last + ")";
 }
 
-std::string with_log(const std::string& reason, const std::string& log_path) {
-  const std::string last = log_tail(log_path, 1);
-  return last.empty() ? reason + " (log " + log_path + " is empty)"
-                      : reason + " (log " + log_path + " ends: " + last + ")";
+// Lines as a log shows them: a progress line redrawn with '\r' is what it
+// ended as; blank lines are left out.
+void add_log_lines(std::istream& in, int keep, std::deque<std::string>& tail) {
+  std::string line;
+  while (std::getline(in, line)) {
+    const size_t cr = line.find_last_of('\r', line.size() >= 2 ? line.size() - 2 : 0);
+    if (cr != std::string::npos && cr + 1 < line.size()) line = line.substr(cr + 1);
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find_first_not_of(" \t") == std::string::npos) continue;
+    tail.push_back(line);
+    if (static_cast<int>(tail.size()) > keep) tail.pop_front();
+  }
+}
+
+// The log's last line, from its last few kilobytes only (it is read twice
+// a second while the system runs, and a log may grow large).
+std::string last_log_line(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "";
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  in.seekg(std::max<std::streamoff>(0, size - 4096));
+  std::deque<std::string> tail;
+  add_log_lines(in, 1, tail);
+  return tail.empty() ? "" : tail.back();
+}
+
+// Poses in a trajectory file being written: its data lines.
+size_t count_poses(const std::string& path) {
+  std::ifstream in(path);
+  size_t n = 0;
+  std::string line;
+  while (std::getline(in, line))
+    if (!line.empty() && line[0] != '#' && line.find_first_not_of(" \t\r") != std::string::npos)
+      ++n;
+  return n;
+}
+
+// Paths in the work folder by their placeholders: the folder is gone when a
+// user reads the message.
+std::string replace_all(std::string text, const std::string& from, const std::string& to) {
+  if (from.empty()) return text;
+  for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+    text.replace(at, from.size(), to);
+  return text;
+}
+
+std::string name_paths(std::string message, const std::map<std::string, std::string>& values) {
+  for (const char* key :
+       {"trajectory", "keypoints", "timestamps", "intrinsics", "orbslam_settings"}) {
+    auto it = values.find(key);
+    if (it != values.end())
+      message = replace_all(message, it->second, std::string("{") + key + "}");
+  }
+  auto work = values.find("work");
+  return work == values.end() ? message : replace_all(message, work->second, "{work}");
+}
+
+// A scratch folder of this run in the temp directory, named with this
+// process's id so that the next run removes it if this one is killed.
+std::string make_scratch_folder() {
+  const fs::path temp = fs::temp_directory_path();
+  remove_stale_scratch(temp.string(), "depot-system-");
+  std::string pattern = (temp / ("depot-system-" + std::to_string(getpid()) + "-XXXXXX")).string();
+  if (!mkdtemp(pattern.data()))
+    fail(pattern, std::string("cannot create a scratch folder: ") + std::strerror(errno));
+  return pattern;
 }
 
 // The system's trajectory, in the dataset's frames' timestamps. A KITTI
@@ -166,26 +224,35 @@ std::string log_tail(const std::string& path, int lines) {
   std::ifstream in(path);
   if (!in) return "";
   std::deque<std::string> tail;
-  std::string line;
-  while (std::getline(in, line)) {
-    // Progress lines redraw with '\r': keep what the line ended as.
-    const size_t cr = line.find_last_of('\r', line.size() >= 2 ? line.size() - 2 : 0);
-    if (cr != std::string::npos && cr + 1 < line.size()) line = line.substr(cr + 1);
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.find_first_not_of(" \t") == std::string::npos) continue;
-    tail.push_back(line);
-    if (static_cast<int>(tail.size()) > lines) tail.pop_front();
-  }
+  add_log_lines(in, lines, tail);
   std::string out;
   for (const auto& l : tail) out += (out.empty() ? "" : "\n") + l;
   return out;
 }
 
+WorkFolder::~WorkFolder() {
+  std::error_code ec;
+  fs::remove_all(path_, ec);
+}
+
+std::string name_work_paths(const SystemRunResult& result, const std::string& message) {
+  std::map<std::string, std::string> values;
+  if (!result.trajectory_path.empty()) values["trajectory"] = result.trajectory_path;
+  if (!result.keypoints_path.empty()) values["keypoints"] = result.keypoints_path;
+  if (result.work) values["work"] = result.work->path();
+  return name_paths(message, values);
+}
+
 SystemRunResult run_system(const SystemSpec& spec, const SystemRunRequest& request) {
   const std::string who = "system " + spec.name;
+  // What systems of killed depot processes left running goes first.
+  remove_stale_process_trees();
   const slam::TumSequence sequence(request.dataset);
-  fs::create_directories(request.work_dir);
-  const fs::path work = fs::absolute(request.work_dir);
+  auto work_folder = std::make_shared<WorkFolder>(request.work_dir.empty() ? make_scratch_folder()
+                                                                           : request.work_dir);
+  fs::create_directories(work_folder->path());
+  const fs::path work = fs::absolute(work_folder->path());
+  const std::string log_name = request.log_name.empty() ? request.log_path : request.log_name;
 
   std::map<std::string, std::string> values;
   values["dataset"] = fs::absolute(request.dataset).string();
@@ -229,38 +296,71 @@ SystemRunResult run_system(const SystemSpec& spec, const SystemRunRequest& reque
   ChildSpec child;
   child.argv = expand_command(spec, values);
   child.log_path = request.log_path;
-  child.own_process_group = true;
   child.working_dir = work.string();
   child.env = spec.env;
   const auto start = std::chrono::steady_clock::now();
-  pid_t pid = 0;
+  auto seconds_since_start = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  std::unique_ptr<ProcessTree> tree;
   try {
-    pid = start_child(child);
+    tree = std::make_unique<ProcessTree>(child, request.tracking);
   } catch (const Error& e) {
     fail(who, std::string("command not started: ") + e.what());
   }
+  auto report = [&](bool finished) {
+    if (!request.on_progress) return;
+    SystemProgress p;
+    p.seconds = seconds_since_start();
+    p.frames = sequence.size();
+    p.poses = count_poses(values["trajectory"]);
+    p.log_line = last_log_line(request.log_path);
+    p.finished = finished;
+    request.on_progress(p);
+  };
   const std::atomic<bool>& stop = request.stop ? *request.stop : interrupt_flag();
+  constexpr auto kGrace = std::chrono::seconds(5);
   int status = 0;
+  bool interrupted = false, timed_out = false;
+  double last_report = 0;
   while (true) {
-    const pid_t done = waitpid(pid, &status, WNOHANG);
-    if (done == pid) break;
-    if (done < 0) fail(who, "lost its process");
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::optional<int> done;
+    try {
+      done = tree->poll();
+    } catch (const Error& e) {
+      fail(who, std::string("lost its process: ") + e.what());
+    }
+    if (done) {
+      status = *done;
+      break;
+    }
+    const double seconds = seconds_since_start();
     if (stop.load()) {
-      stop_group(pid);
-      fail(who, "interrupted");
+      tree->stop(kGrace);
+      interrupted = true;
+      break;
     }
     if (seconds > spec.time_limit_s) {
-      stop_group(pid);
-      fail(who, with_log("stopped at its time limit of " + format_double(spec.time_limit_s) + " s",
-                         request.log_path));
+      tree->stop(kGrace);
+      timed_out = true;
+      break;
+    }
+    if (seconds - last_report >= 0.5) {
+      last_report = seconds;
+      report(false);
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  kill(-pid, SIGKILL);  // nothing the system started outlives it
+  tree->kill_all();  // nothing the system started outlives it
+  tree.reset();
+  report(true);
+  if (interrupted) fail(who, "interrupted");
+  if (timed_out)
+    fail(who, with_log("stopped at its time limit of " + format_double(spec.time_limit_s) + " s",
+                       request.log_path, log_name));
   SystemRunResult result;
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.work = work_folder;
+  result.seconds = seconds_since_start();
   result.frames = sequence.size();
   for (size_t i = 0; i < sequence.size(); ++i)
     result.frame_timestamps.push_back(sequence.entry(i).rgb_timestamp);
@@ -269,20 +369,20 @@ SystemRunResult run_system(const SystemSpec& spec, const SystemRunRequest& reque
   if (code != 0)
     fail(who, with_log(code > 128 ? "killed by signal " + std::to_string(code - 128)
                                   : "exited with code " + std::to_string(code),
-                       request.log_path));
+                       request.log_path, log_name));
   result.trajectory_path = values["trajectory"];
   if (!fs::is_regular_file(result.trajectory_path))
-    fail(who, with_log("wrote no trajectory at " + result.trajectory_path, request.log_path));
+    fail(who, with_log("wrote no trajectory to {trajectory}", request.log_path, log_name));
   try {
     result.trajectory = read_system_trajectory(spec, result.trajectory_path, values["timestamps"],
                                                result.frame_timestamps);
   } catch (const Error& e) {
-    fail(who, std::string("its trajectory: ") + e.what());
+    fail(who, "its trajectory: " + name_paths(e.what(), values));
   }
   if (spec.writes_keypoints) {
     result.keypoints_path = values["keypoints"];
     if (!fs::is_regular_file(result.keypoints_path))
-      fail(who, with_log("wrote no keypoint file at " + result.keypoints_path, request.log_path));
+      fail(who, with_log("wrote no keypoint file to {keypoints}", request.log_path, log_name));
   }
   return result;
 }
