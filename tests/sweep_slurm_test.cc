@@ -4,7 +4,9 @@
 // DEPOT_SLURM=1 says one must be there. The sweep through Slurm gives the
 // local pool's records to the last digit; a cancelled task is resumed
 // without rewriting a record; a failing job is retried, then reported; bad
-// input is one error line with nothing submitted.
+// input is one error line with nothing submitted; no resume, local or not,
+// runs while the folder's tasks are queued; Ctrl-C says how to resume on Slurm.
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -24,6 +26,7 @@
 #include "tests/support/render_helpers.h"
 #include "tools/harness/command_output.h"
 #include "tools/harness/slurm_submission.h"
+#include "tools/harness/sweep_job_state.h"
 
 namespace fs = std::filesystem;
 
@@ -326,6 +329,134 @@ TEST(SweepSlurm, BadInputIsOneErrorLineAndSubmitsNothing) {
   const test::DepotResult ok = test::depot(grid + " --poll 0.5");
   EXPECT_EQ(ok.code, 0) << ok.output;
   EXPECT_EQ(run_records(sweep).size(), 1u) << ok.output;
+}
+
+// Cancels a submission's arrays and waits until the queue no longer lists them.
+struct CancelAtEnd {
+  std::vector<std::string> ids;
+  void now() {
+    if (ids.empty()) return;
+    std::vector<std::string> argv = {"scancel"};
+    argv.insert(argv.end(), ids.begin(), ids.end());
+    harness::run_for_output(argv);
+    std::vector<std::string> ask = {"squeue", "--me", "-h", "-r", "-o", "%i", "-j"};
+    std::string list;
+    for (const auto& id : ids) list += (list.empty() ? "" : ",") + id;
+    ask.push_back(list);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+    while (lines(harness::run_for_output(ask).out) > 0 &&
+           std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    ids.clear();
+  }
+  ~CancelAtEnd() { now(); }
+};
+
+std::vector<std::string> array_ids(const harness::SweepLayout& layout) {
+  std::vector<std::string> ids;
+  if (const auto s = harness::read_submission(layout))
+    for (const auto& a : s->arrays) ids.push_back(a.job_id);
+  return ids;
+}
+
+// Issue 30, item 3: a folder submitted to Slurm knows it; any resume, local
+// or not, asks the queue first and runs nothing while its tasks are there.
+TEST(SweepSlurm, NoResumeRunsWhileTheFoldersTasksAreQueued) {
+  REQUIRE_CLUSTER();
+  const fs::path sweep = fresh("held");
+  const std::string grid =
+      "depot_walking_xyz --modes orb --seeds 1 --frames 10 --width 160 --mapping sync -o " +
+      sweep.string();
+  // Held tasks stay queued until released or cancelled.
+  const test::DepotResult submitted =
+      test::depot("sweep run " + grid + " --scheduler slurm --detach --sbatch-arg=--hold");
+  ASSERT_EQ(submitted.code, 0) << submitted.output;
+  const harness::SweepLayout layout{sweep.string()};
+  CancelAtEnd cancel{array_ids(layout)};
+  ASSERT_EQ(cancel.ids.size(), 2u) << submitted.output;  // render, then orb
+
+  for (const std::string scheduler : {"", " --scheduler slurm"}) {
+    const test::DepotResult r = test::depot("sweep resume " + sweep.string() + scheduler);
+    EXPECT_EQ(r.code, 1) << scheduler << "\n" << r.output;
+    EXPECT_EQ(lines(r.output), 1u) << scheduler << "\n" << r.output;
+    EXPECT_EQ(error_lines(r.output), 1u) << scheduler << "\n" << r.output;
+    EXPECT_NE(r.output.find(sweep.string() + ": 2 task(s) of its Slurm submission"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("`depot sweep status " + sweep.string() + "`"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("`scancel " + cancel.ids[0] + " " + cancel.ids[1] + "`"),
+              std::string::npos)
+        << r.output;
+  }
+  EXPECT_FALSE(fs::exists(sweep / "runs"));
+  EXPECT_FALSE(fs::exists(sweep / "data"));
+  EXPECT_FALSE(fs::exists(sweep / "logs"));
+  EXPECT_EQ(array_ids(layout), cancel.ids) << "nothing submitted again";
+  const test::DepotResult status = test::depot("sweep status " + sweep.string());
+  EXPECT_NE(status.output.find("2 jobs: 0 done, 0 running, 2 pending in Slurm"), std::string::npos)
+      << status.output;
+
+  // Once they are gone, a plain local resume runs the jobs.
+  cancel.now();
+  const test::DepotResult local = test::depot("sweep resume " + sweep.string() + " -q");
+  EXPECT_EQ(local.code, 0) << local.output;
+  EXPECT_EQ(run_records(sweep).size(), 1u) << local.output;
+}
+
+// Issue 30, item 16: Ctrl-C of a sweep on Slurm cancels its tasks and says
+// how to resume it there (with the options that placed its jobs).
+TEST(SweepSlurm, CtrlCCancelsAndItsHintResumesOnSlurm) {
+  REQUIRE_CLUSTER();
+  const fs::path sweep = fresh("interrupted");
+  const fs::path log = kRoot / "interrupted.log";
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    std::vector<std::string> words = {test::depot_binary(),
+                                      "sweep",
+                                      "run",
+                                      "depot_walking_xyz",
+                                      "--modes",
+                                      "orb",
+                                      "--seeds",
+                                      "1",
+                                      "--frames",
+                                      "10",
+                                      "--width",
+                                      "160",
+                                      "-o",
+                                      sweep.string(),
+                                      "--scheduler",
+                                      "slurm",
+                                      "--poll",
+                                      "0.5",
+                                      "--sbatch-arg=--hold"};
+    std::vector<char*> argv;
+    for (auto& w : words) argv.push_back(w.data());
+    argv.push_back(nullptr);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  const harness::SweepLayout layout{sweep.string()};
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+  while (!harness::read_submission(layout) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  CancelAtEnd cancel{array_ids(layout)};  // should the sweep fail to
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  const std::string printed = read(log);
+  ASSERT_FALSE(cancel.ids.empty()) << printed;
+  ASSERT_TRUE(WIFEXITED(status)) << printed;
+  EXPECT_NE(WEXITSTATUS(status), 0) << printed;
+  EXPECT_NE(printed.find("resume with `depot sweep resume " + sweep.string() +
+                         " --scheduler slurm --sbatch-arg=--hold`"),
+            std::string::npos)
+      << printed;
+  EXPECT_EQ(queued("depot-sweep:" + sweep.filename().string()), 0u) << "Ctrl-C cancels the tasks";
 }
 
 }  // namespace

@@ -19,8 +19,11 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
 #include "tools/harness/run_record.h"
+#include "tools/harness/slurm_submission.h"
+#include "tools/harness/sweep_job_state.h"
 
 namespace fs = std::filesystem;
 
@@ -209,6 +212,255 @@ TEST(Sweep, ReportRendersInHeadlessChromium) {
   cv::Mat grey;
   cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
   EXPECT_GT(cv::countNonZero(grey < 128), 5000);
+}
+
+// `depot args` run in `folder` (a shell's cd first).
+test::DepotResult depot_in(const fs::path& folder, const std::string& args) {
+  test::DepotResult r;
+  r.code = test::run_command("cd '" + folder.string() + "' && " + test::depot_binary() + " " + args,
+                             &r.output);
+  return r;
+}
+
+void write_file(const fs::path& p, const std::string& text) {
+  fs::create_directories(p.parent_path());
+  std::ofstream(p) << text;
+}
+
+size_t count_of(const std::string& text, const std::string& word) {
+  size_t n = 0;
+  for (size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1)) ++n;
+  return n;
+}
+
+// Issue 30, item 4: a system file given by a relative path is stored
+// absolute, so the sweep's status, resume and jobs find it from any folder.
+TEST(Sweep, ASystemFileGivenRelativeIsFoundFromAnyFolder) {
+  const fs::path work = kRoot / "relative_system";
+  fs::remove_all(work);
+  write_file(work / "s" / "broken.yaml",
+             "command: [/bin/sh, -c, 'echo no map >&2; exit 2', sh, \"{trajectory}\"]\n");
+  const test::DepotResult plan =
+      depot_in(work,
+               "sweep run depot_static -o out --modes orb,system:s/broken.yaml --seeds 1 "
+               "--frames 10 --width 160 --plan-only");
+  ASSERT_EQ(plan.code, 0) << plan.output;
+  EXPECT_NE(read(work / "out" / "sweep.json").find((work / "s" / "broken.yaml").string()),
+            std::string::npos)
+      << read(work / "out" / "sweep.json");
+
+  // From another folder (this test's): status, resume and the jobs find the file.
+  const std::string out = (work / "out").string();
+  const test::DepotResult status = test::depot("sweep status " + out);
+  ASSERT_EQ(status.code, 0) << status.output;
+  EXPECT_NE(status.output.find("3 jobs: 0 done"), std::string::npos) << status.output;
+  const test::DepotResult resumed = test::depot("sweep resume " + out + " -q");
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  const harness::RunRecord r = harness::read_run_record(
+      (work / "out" / "runs" / "depot_static__s1__system_s_broken.yaml" / "result.json").string());
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("exited with code 2"), std::string::npos) << r.error;  // it ran
+}
+
+// Issue 30, item 6: one state per job (harness/sweep_job_state.h) for
+// status, resume and report: a run without a trajectory, a failed job, a
+// running one and a corrupt record, each in the same words everywhere.
+TEST(Sweep, StatusResumeAndReportAgreeOnEachJobsState) {
+  const fs::path work = kRoot / "states";
+  fs::remove_all(work);
+  const fs::path started = work / "started", release = work / "release";
+  // A system that runs until told to stop, then ends without a trajectory.
+  write_file(work / "wait.yaml", "command: [/bin/sh, -c, 'touch " + started.string() +
+                                     "; while [ ! -e " + release.string() +
+                                     " ]; do sleep 0.1; done; exit 2', sh, \"{trajectory}\"]\n");
+  const fs::path sweep = work / "out";
+  const std::string grid = "sweep run depot_static -o " + sweep.string() +
+                           " --modes orb,system:" + (work / "wait.yaml").string() +
+                           " --seeds 1 --frames 10 --width 160 -j 1";
+  ASSERT_EQ(test::depot(grid + " --plan-only").code, 0);
+  const std::string orb = "depot_static__s1__orb";
+  // A file where orb's run folder goes: that job fails.
+  write_file(sweep / "runs" / orb, "in the way\n");
+
+  const pid_t pid = start_depot({"sweep", "run", "depot_static", "-o", sweep.string(), "--modes",
+                                 "orb,system:" + (work / "wait.yaml").string(), "--seeds", "1",
+                                 "--frames", "10", "--width", "160", "-j", "1"},
+                                work / "run.log");
+  struct Release {  // whatever happens below, the system stops and the sweep ends
+    fs::path file;
+    pid_t pid;
+    ~Release() {
+      write_file(file, "");
+      waitpid(pid, nullptr, 0);
+    }
+  };
+  {
+    Release guard{release, pid};
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+    while (!fs::exists(started) && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    ASSERT_TRUE(fs::exists(started)) << read(work / "run.log");
+    // The render is done, orb failed (the pool runs one job at a time), the system runs.
+    const test::DepotResult running = test::depot("sweep status " + sweep.string());
+    EXPECT_EQ(running.code, 0) << running.output;
+    EXPECT_NE(running.output.find("3 jobs: 1 done, 1 running, 0 waiting in a local `depot sweep`"),
+              std::string::npos)
+        << running.output;
+    EXPECT_NE(running.output.find(", 1 failed, 0 not started"), std::string::npos)
+        << running.output;
+    EXPECT_NE(running.output.find("failed: " + orb), std::string::npos) << running.output;
+  }
+  const std::string first = read(work / "run.log");
+  EXPECT_NE(first.find("1 job(s) failed"), std::string::npos) << first;
+
+  // Status and report: one without a trajectory, one failed.
+  test::DepotResult status = test::depot("sweep status " + sweep.string());
+  EXPECT_NE(status.output.find("3 jobs: 2 done (1 without a trajectory), 1 failed, 0 not started"),
+            std::string::npos)
+      << status.output;
+  EXPECT_NE(read(sweep / "report" / "tables.md").find("1 of 2 (1 without a trajectory, 1 failed)"),
+            std::string::npos)
+      << read(sweep / "report" / "tables.md");
+
+  // Resume runs the failed job (the obstacle gone) and keeps the system's run.
+  fs::remove(sweep / "runs" / orb);
+  test::DepotResult resumed = test::depot("sweep resume " + sweep.string() + " -q");
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  status = test::depot("sweep status " + sweep.string());
+  EXPECT_NE(status.output.find("3 jobs: 3 done (1 without a trajectory), 0 failed, 0 not started"),
+            std::string::npos)
+      << status.output;
+  EXPECT_FALSE(fs::exists(sweep / "failed" / (orb + ".json")));
+
+  // A corrupt record is named, not counted done, left out of the report and run again.
+  const fs::path record = sweep / "runs" / orb / "result.json";
+  const std::string whole = read(record);
+  write_file(record, whole.substr(0, whole.size() / 2));
+  status = test::depot("sweep status " + sweep.string());
+  EXPECT_NE(status.output.find("3 jobs: 2 done (1 without a trajectory), 0 failed, 1 corrupt"),
+            std::string::npos)
+      << status.output;
+  EXPECT_NE(status.output.find("corrupt: " + record.string() + ": corrupt record"),
+            std::string::npos)
+      << status.output;
+  const test::DepotResult report = test::depot("sweep report " + sweep.string());
+  EXPECT_EQ(report.code, 0) << report.output;
+  EXPECT_NE(report.output.find("depot: warning: " + record.string() + ": corrupt record"),
+            std::string::npos)
+      << report.output;
+  EXPECT_NE(report.output.find("(1 of 2 runs)"), std::string::npos) << report.output;
+  EXPECT_NE(report.output.find("1 of 2 (1 without a trajectory, 1 corrupt)"), std::string::npos)
+      << report.output;
+  resumed = test::depot("sweep resume " + sweep.string() + " -q");
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("depot: warning: " + record.string() + ": corrupt record"),
+            std::string::npos)
+      << resumed.output;
+  EXPECT_NE(resumed.output.find("job " + orb + " runs again and its new record replaces this one"),
+            std::string::npos)
+      << resumed.output;
+  EXPECT_TRUE(harness::read_run_record(record.string()).ok);
+  EXPECT_NE(resumed.output.find("(2 of 2 runs)"), std::string::npos) << resumed.output;
+}
+
+// Issue 30, item 3: a folder submitted to Slurm is not run locally while
+// its tasks are queued, nor when the queue cannot be read. Here a stand-in
+// squeue answers; tests/sweep_slurm_test.cc does the same on a real cluster.
+TEST(Sweep, ResumeRefusesWhileItsSlurmTasksMayStillRun) {
+  const fs::path work = kRoot / "queued";
+  fs::remove_all(work);
+  const fs::path sweep = work / "out";
+  ASSERT_EQ(test::depot("sweep run depot_static -o " + sweep.string() +
+                        " --modes orb --seeds 1 --frames 10 --width 160 --plan-only")
+                .code,
+            0);
+  const harness::SweepLayout layout{sweep.string()};
+  harness::SlurmSubmission submission;
+  submission.arrays.push_back(
+      {"4242", harness::JobKind::kRender, false, {{0, "depot_static__s1"}}});
+  submission.arrays.push_back(
+      {"4243", harness::JobKind::kSlam, true, {{0, "depot_static__s1__orb"}}});
+  fs::create_directories(harness::slurm_dir(layout));
+  harness::write_submission(layout, submission);
+  const fs::path bin = work / "bin";
+  auto stand_in_squeue = [&](const std::string& script) {
+    write_file(bin / "squeue", "#!/bin/sh\n" + script + "\n");
+    fs::permissions(bin / "squeue", fs::perms::owner_all);
+  };
+  const char* old = std::getenv("PATH");
+  const std::string saved = old ? old : "";
+  auto resume_with_path = [&](const std::string& path, const std::string& extra = "") {
+    setenv("PATH", path.c_str(), 1);
+    const test::DepotResult r = test::depot("sweep resume " + sweep.string() + " -q" + extra);
+    setenv("PATH", saved.c_str(), 1);
+    return r;
+  };
+  auto nothing_ran = [&] {
+    for (const char* sub : {"data", "runs", "logs"}) EXPECT_FALSE(fs::exists(sweep / sub)) << sub;
+  };
+
+  // Queued: one error line with the count, nothing run.
+  stand_in_squeue(
+      "echo '4242|0|PENDING|Priority'; echo '4243|0|PENDING|Dependency'; "
+      "echo '77|0|RUNNING|None'");
+  test::DepotResult r = resume_with_path(bin.string() + ":" + saved);
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_EQ(r.output, "depot: error: " + sweep.string() +
+                          ": 2 task(s) of its Slurm submission (job 4242,4243) are still queued "
+                          "or running, so nothing was run; follow them with `depot sweep status " +
+                          sweep.string() + "` or cancel them with `scancel 4242 4243`\n");
+  nothing_ran();
+  // squeue fails (the controller is down): refused too.
+  stand_in_squeue("echo 'squeue: error: Unable to contact slurm controller' >&2; exit 1");
+  r = resume_with_path(bin.string() + ":" + saved);
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_EQ(count_of(r.output, "\n"), 1u) << r.output;
+  EXPECT_NE(r.output.find("was submitted to Slurm but its queue cannot be read (squeue: "),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("Unable to contact slurm controller"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--assume-queue-empty"), std::string::npos) << r.output;
+  nothing_ran();
+  // No squeue here at all: refused, saying why.
+  r = resume_with_path((work / "nowhere").string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_EQ(count_of(r.output, "\n"), 1u) << r.output;
+  EXPECT_NE(r.output.find("was submitted to Slurm (" + sweep.string() +
+                          "/slurm/submission.json) but squeue is not on PATH"),
+            std::string::npos)
+      << r.output;
+  nothing_ran();
+  // The tasks have ended (the queue no longer lists them): the jobs run here.
+  stand_in_squeue("echo '77|0|RUNNING|None'");
+  r = resume_with_path(bin.string() + ":" + saved);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(records(sweep).size(), 1u) << r.output;
+}
+
+// Issue 30, item 16: --plan-only's commands are for another machine: the
+// folder absolute, each line exactly what a shell reads back.
+TEST(Sweep, PlanOnlyPrintsCommandsAShellRunsAsTheyAre) {
+  const fs::path work = kRoot / "plan only";  // a space: quoted
+  fs::remove_all(work);
+  fs::create_directories(work);
+  const test::DepotResult plan =
+      depot_in(work,
+               "sweep run depot_static -o out --modes orb --seeds 1 --frames 10 --width 160 "
+               "--plan-only");
+  ASSERT_EQ(plan.code, 0) << plan.output;
+  std::vector<std::string> lines;
+  std::istringstream in(plan.output);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 2u) << plan.output;
+  const std::string folder = "'" + (work / "out").string() + "'";
+  EXPECT_EQ(lines[0], test::depot_binary() + " sweep job " + folder + " depot_static__s1");
+  EXPECT_EQ(lines[1], test::depot_binary() + " sweep job " + folder + " depot_static__s1__orb");
+  // Run as printed, from elsewhere.
+  for (const auto& line : lines) {
+    std::string output;
+    EXPECT_EQ(test::run_command("cd / && " + line, &output), 0) << line << "\n" << output;
+  }
+  EXPECT_EQ(records(work / "out").size(), 1u);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <memory>
 #include <set>
+#include <utility>
 
 #include "common/child_process.h"
 #include "common/error.h"
@@ -33,7 +34,7 @@ struct SweepArgs {
   std::vector<std::string> modes = {"orb", "orb+yolo", "orb+lk", "full"};
   int seeds = 3, frames = 300, width = 640, workers = 1;
   std::string mapping = "sync";
-  bool keep_data = false, plan_only = false, quiet = false;
+  bool keep_data = false, plan_only = false, quiet = false, assume_queue_empty = false;
   std::vector<std::string> figures;
   std::string output;
   std::string scheduler = "local";
@@ -54,13 +55,56 @@ harness::SweepSpec make_spec(const SweepArgs& a) {
   spec.width = a.width;
   spec.sync_mapping = a.mapping == "sync";
   spec.keep_data = a.keep_data;
+  harness::resolve_system_files(spec);  // absolute, as the scenarios' paths
   harness::validate(spec, "depot sweep run");
   return spec;
+}
+
+// A word as a shell reads it back: quoted when it holds anything but
+// letters, digits and /._-+=:,@%
+std::string shell_word(const std::string& word) {
+  const bool plain = !word.empty() && word.find_first_not_of(
+                                          "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+                                          "0123456789/._-+=:,@%") == std::string::npos;
+  if (plain) return word;
+  std::string quoted = "'";
+  for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+std::string shell_line(const std::vector<std::string>& words) {
+  std::string line;
+  for (const auto& w : words) line += (line.empty() ? "" : " ") + shell_word(w);
+  return line;
+}
+
+// The command that resumes this sweep where it ran: on Slurm with the
+// options that place its jobs on the cluster.
+std::string resume_command(const SweepArgs& a, const std::string& root) {
+  std::vector<std::string> words = {"depot", "sweep", "resume", root};
+  if (a.scheduler == "slurm") {
+    words.insert(words.end(), {"--scheduler", "slurm"});
+    const harness::SlurmOptions& s = a.slurm;
+    for (const auto& [option, value] :
+         {std::pair<const char*, std::string>{"--partition", s.partition},
+          {"--account", s.account},
+          {"--time", s.time_limit},
+          {"--mem", s.memory},
+          {"--cpus-per-task", s.cpus_per_task > 0 ? std::to_string(s.cpus_per_task) : ""}})
+      if (!value.empty()) words.insert(words.end(), {option, value});
+    for (const auto& arg : s.sbatch_args) words.push_back("--sbatch-arg=" + arg);
+  }
+  return shell_line(words);
 }
 
 void report(const harness::SweepPlan& plan, const harness::SweepLayout& layout,
             const std::vector<std::string>& figures, bool print_table) {
   const harness::ReportFiles files = harness::write_sweep_report(plan, layout, figures);
+  for (const auto& problem : files.corrupt)
+    std::fprintf(stderr,
+                 "depot: warning: %s; left out of the report (`depot sweep resume %s` runs it "
+                 "again)\n",
+                 problem.c_str(), shell_word(layout.root).c_str());
   if (print_table) std::printf("%s", files.ablation_markdown.c_str());
   std::printf("report: %s (%zu of %zu runs)\ntables: %s\n", files.html.c_str(), files.runs_found,
               files.runs_expected, files.markdown.c_str());
@@ -72,6 +116,7 @@ void execute(const harness::SweepPlan& plan, const harness::SweepLayout& layout,
   options.program = own_program_path();
   options.workers = a.workers;
   options.progress = !a.quiet;
+  options.assume_queue_empty = a.assume_queue_empty;
   harness::SweepRunResult r;
   if (a.scheduler == "slurm") {
     const harness::SlurmRunResult s =
@@ -87,14 +132,13 @@ void execute(const harness::SweepPlan& plan, const harness::SweepLayout& layout,
     r = harness::run_sweep(plan, layout, options, interrupt_flag());
   }
   if (r.interrupted)
-    fail(layout.root,
-         "sweep interrupted; finished runs are kept, resume with `depot sweep resume " +
-             layout.root + "`");
+    fail(layout.root, "sweep interrupted; finished runs are kept, resume with `" +
+                          resume_command(a, layout.root) + "`");
   report(plan, layout, a.figures, true);
   if (r.failed || r.blocked)
     fail(layout.root, std::to_string(r.failed) + " job(s) failed and " + std::to_string(r.blocked) +
-                          " could not run (logs in " + layout.root +
-                          "/logs); `depot sweep resume` retries them");
+                          " could not run (logs in " + layout.root + "/logs); `" +
+                          resume_command(a, layout.root) + "` retries them");
 }
 
 void run_command(const SweepArgs& a) {
@@ -105,12 +149,12 @@ void run_command(const SweepArgs& a) {
   harness::check_sweep_inputs(plan);
   harness::write_or_check_spec(layout, spec);
   if (a.plan_only) {
-    // For a cluster scheduler: every render job before the runs that read it.
-    for (const auto& job : plan.jobs) {
-      for (const auto& word : harness::job_command(own_program_path(), layout, job))
-        std::printf("%s ", word.c_str());
-      std::printf("\n");
-    }
+    // For a cluster scheduler: every render job before the runs that read
+    // it, with absolute paths (the jobs run elsewhere), one line each.
+    const harness::SweepLayout absolute{fs::absolute(layout.root).lexically_normal().string()};
+    for (const auto& job : plan.jobs)
+      std::printf("%s\n",
+                  shell_line(harness::job_command(own_program_path(), absolute, job)).c_str());
     return;
   }
   execute(plan, layout, a);
@@ -165,6 +209,10 @@ void add_execution_options(CLI::App* cmd, SweepArgs& a) {
       ->delimiter(',')
       ->default_str("orb and full at the last level, seed 1");
   cmd->add_flag("-q,--quiet", a.quiet, "No progress lines (the table and report still print)");
+  cmd->add_flag("--assume-queue-empty", a.assume_queue_empty,
+                "Run although the folder was submitted to Slurm and its queue is not looked at "
+                "(for when squeue cannot answer here): only when its tasks are known to have "
+                "ended, else they run jobs twice");
   cmd->add_option("--scheduler", a.scheduler,
                   "local (a process pool of -j workers) or slurm (job arrays through sbatch; the "
                   "folder and depot must be on a filesystem every node sees)")
@@ -249,13 +297,26 @@ void register_sweep_commands(CLI::App& app) {
     const harness::SweepLayout layout{*status_folder};
     const harness::SweepPlan plan = harness::make_sweep_plan(harness::read_spec(layout));
     const harness::SweepStatus s = harness::read_sweep_status(plan, layout);
+    // The words of the report (harness/sweep_job_state.h).
     std::printf("%s: %zu jobs: %zu done", layout.root.c_str(), s.jobs, s.done);
-    if (s.on_slurm) std::printf(", %zu running, %zu pending in Slurm", s.running, s.pending);
-    std::printf(", %zu failed, %zu not queued\n", s.failed, s.not_queued);
+    if (s.without_trajectory) std::printf(" (%zu without a trajectory)", s.without_trajectory);
+    if (s.on_slurm)
+      std::printf(", %zu running, %zu pending in Slurm", s.running, s.pending);
+    else if (s.local_runner)
+      std::printf(", %zu running, %zu waiting in a local `depot sweep` (pid %ld)", s.running,
+                  s.pending, s.local_runner);
+    std::printf(", %zu failed", s.failed);
+    if (s.corrupt) std::printf(", %zu corrupt", s.corrupt);
+    std::printf(", %zu not started\n", s.not_started);
     if (!s.queue_error.empty())
       std::printf("(the Slurm queue could not be read: %s)\n", s.queue_error.c_str());
+    for (const auto& run : s.runs_without_trajectory)
+      std::printf("without a trajectory: %s\n", run.c_str());
     for (const auto& id : s.failed_jobs)
       std::printf("failed: %s (log: %s)\n", id.c_str(), layout.log_file(id).c_str());
+    for (const auto& problem : s.corrupt_records)
+      std::printf("corrupt: %s (`depot sweep resume %s` runs it again)\n", problem.c_str(),
+                  shell_word(layout.root).c_str());
   });
 
   auto report_args = std::make_shared<SweepArgs>();

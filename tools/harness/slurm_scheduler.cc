@@ -14,7 +14,9 @@
 #include "tools/harness/slurm_client.h"
 #include "tools/harness/slurm_submission.h"
 #include "tools/harness/sweep_folder.h"
+#include "tools/harness/sweep_job_state.h"
 #include "tools/harness/sweep_progress.h"
+#include "tools/harness/sweep_status.h"
 
 namespace fs = std::filesystem;
 
@@ -86,22 +88,6 @@ std::vector<std::string> array_args(const SlurmSubmission& s, size_t k, const Sw
   return args;
 }
 
-// Refuses to submit while tasks of an earlier submission could still write here.
-void require_nothing_queued(const SweepLayout& layout) {
-  const auto earlier = read_submission(layout);
-  if (!earlier) return;
-  std::set<std::string> ids;
-  for (const auto& a : earlier->arrays) ids.insert(a.job_id);
-  const auto queued = queued_tasks(ids);
-  if (queued.empty()) return;
-  std::string list;
-  for (const auto& id : ids) list += (list.empty() ? "" : " ") + id;
-  fail(layout.root, std::to_string(queued.size()) +
-                        " task(s) of its earlier Slurm submission are still queued or running; "
-                        "wait for them (`depot sweep status`) or cancel them (`scancel " +
-                        list + "`)");
-}
-
 void submit(SlurmSubmission& s, const SweepLayout& layout, const SweepRunOptions& options,
             const SlurmOptions& slurm) {
   // A bad option (time, account, memory, an extra argument) fails here, before anything is queued.
@@ -143,10 +129,11 @@ std::string ending_line(const SweepPlan& plan, const SweepLayout& layout, const 
   }
   failed = true;
   const std::string log = layout.log_file(job.id);
-  const std::string tail = file_tail(log, 8);
-  fs::create_directories(fs::path(failure_record_path(layout, job.id)).parent_path());
-  write_record(failure_record_path(layout, job.id),
-               {{"id", job.id}, {"attempts", slurm.retries + 1}, {"log", log}, {"log_tail", tail}});
+  write_failure_record(layout, job.id,
+                       {{"id", job.id},
+                        {"attempts", slurm.retries + 1},
+                        {"log", log},
+                        {"log_tail", file_tail(log, 8)}});
   // The console gets the last lines; the failure record keeps more.
   const std::string last = file_tail(log, 3);
   std::string indented;
@@ -176,10 +163,11 @@ SlurmRunResult run_sweep_on_slurm(const SweepPlan& plan, const SweepLayout& give
   const SweepLayout layout{fs::absolute(given_layout.root).lexically_normal().string()};
   SlurmRunResult result;
   result.run.jobs = plan.jobs.size();
-  const SweepFolderLock lock(layout.root);
-  require_nothing_queued(layout);
+  const SweepFolderLock lock(layout.root, "slurm");
+  if (!options.assume_queue_empty) require_no_queued_tasks(layout);
   remove_leftovers(layout);
   const PendingWork work = find_pending_work(plan, layout);
+  warn_corrupt_records(work);
   result.run.already_finished = work.already_finished;
   if (!plan.spec.keep_data)
     for (const auto& id : work.datasets_done) remove_dataset(layout, id);
@@ -200,8 +188,7 @@ SlurmRunResult run_sweep_on_slurm(const SweepPlan& plan, const SweepLayout& give
     // A job resubmitted gets a new chance: its old failure no longer stands.
     for (const auto& a : submission.arrays)
       for (const auto& [index, id] : a.tasks) {
-        std::error_code ec;
-        fs::remove(failure_record_path(layout, id), ec);
+        remove_failure_record(layout, id);
         tasks[{a.job_id, index}] = {plan_index.at(id)};
       }
   }
@@ -259,8 +246,9 @@ SlurmRunResult run_sweep_on_slurm(const SweepPlan& plan, const SweepLayout& give
       result.run.succeeded += !failed && !blocked;
       result.run.failed += failed;
       result.run.blocked += blocked;
-      if (job.kind == JobKind::kSlam && --runs_left[job.dataset_id] == 0 && !plan.spec.keep_data)
-        remove_dataset(layout, job.dataset_id);
+      const bool dataset_used_up =
+          job.kind == JobKind::kSlam ? --runs_left[job.dataset_id] == 0 : runs_left[job.id] == 0;
+      if (dataset_used_up && !plan.spec.keep_data) remove_dataset(layout, job.dataset_id);
       progress.finished(line);
     }
     if (ended == tasks.size()) break;

@@ -33,8 +33,9 @@ struct SlurmRunResult {
 };
 
 // Throws Error, with nothing submitted, when the Slurm clients are missing,
-// the partition is unknown, a queued task of an earlier submission of this
-// folder is still alive, or sbatch rejects a submission (then the arrays
+// the partition is unknown, a task of an earlier submission of this folder
+// is still queued or running (sweep_status.h: require_no_queued_tasks, as
+// the local pool asks too), or sbatch rejects a submission (then the arrays
 // submitted before it are cancelled).
 SlurmRunResult run_sweep_on_slurm(const SweepPlan& plan, const SweepLayout& layout,
                                   const SweepRunOptions& options, const SlurmOptions& slurm,

@@ -64,9 +64,6 @@ std::string task_script_path(const SweepLayout& layout) {
 std::string task_list_path(const SweepLayout& layout, size_t array) {
   return slurm_dir(layout) + "/array-" + std::to_string(array) + ".tasks";
 }
-std::string failure_record_path(const SweepLayout& layout, const std::string& job_id) {
-  return slurm_dir(layout) + "/failed/" + job_id + ".json";
-}
 
 void write_task_files(const SweepLayout& layout, const SlurmSubmission& submission) {
   fs::create_directories(slurm_dir(layout) + "/out");

@@ -4,8 +4,9 @@
 // agree on it:
 //   task.sh            the batch script of every task (fixed text, no paths in it)
 //   array-<k>.tasks    line i + 1: the sweep job id of array index i
-//   submission.json    the arrays: Slurm job id, kind, index -> sweep job id
-//   failed/<id>.json   a job that failed every attempt, with its log's tail
+//   submission.json    the arrays: Slurm job id, kind, index -> sweep job id;
+//                      that it exists is how every later `run` or `resume`
+//                      (whatever its --scheduler) knows to ask the queue first
 //   out/               Slurm's own output of each task (depot's is in logs/)
 #include <map>
 #include <optional>
@@ -30,7 +31,6 @@ struct SlurmSubmission {
 std::string slurm_dir(const SweepLayout& layout);
 std::string task_script_path(const SweepLayout& layout);
 std::string task_list_path(const SweepLayout& layout, size_t array);
-std::string failure_record_path(const SweepLayout& layout, const std::string& job_id);
 
 // task.sh and one list per array.
 void write_task_files(const SweepLayout& layout, const SlurmSubmission& submission);

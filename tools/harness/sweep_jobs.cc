@@ -43,8 +43,7 @@ void run_system_into(const std::string& dataset, const SweepJob& job, const std:
                      const std::string& final_folder, RunRecord& r) {
   const fs::path out(folder);
   try {
-    const system::SystemSpec spec =
-        system::load_system_spec(system::find_system_file(system::system_of_mode(job.mode)));
+    const system::SystemSpec spec = system::load_system_spec(job.system_file);
     system::SystemRunRequest request;
     request.dataset = dataset;
     request.work_dir = (out / "system").string();  // removed with the result, or on failure

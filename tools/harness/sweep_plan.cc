@@ -126,6 +126,7 @@ SweepPlan make_sweep_plan(const SweepSpec& spec) {
         job.cells = {c};
         job.seed = seed;
         job.mode = mode;
+        if (system::is_system_mode(mode)) job.system_file = system_file(spec, mode);
         job.dataset_id = dataset_keys[c] + "__s" + std::to_string(seed);
         job.id = id;
         run_of[id] = plan.jobs.size();
@@ -174,11 +175,6 @@ std::string SweepLayout::log_file(const std::string& job_id) const {
 }
 std::string SweepLayout::report_dir() const {
   return (fs::path(root) / "report").string();
-}
-
-bool job_finished(const SweepLayout& layout, const SweepJob& job) {
-  return fs::is_regular_file(job.kind == JobKind::kRender ? layout.dataset_record(job.id)
-                                                          : layout.run_record(job.id));
 }
 
 SweepSpec read_spec(const SweepLayout& layout) {

@@ -29,8 +29,9 @@ struct SweepJob {
   std::string id;
   size_t cell = 0;  // render: a cell with this dataset's scenario settings; slam: its first cell
   int seed = 1;
-  std::string mode;        // slam jobs only
-  std::string dataset_id;  // the dataset a slam job reads (its own id for render)
+  std::string mode;         // slam jobs only
+  std::string system_file;  // a "system:NAME" mode's file, absolute (SweepSpec::systems)
+  std::string dataset_id;   // the dataset a slam job reads (its own id for render)
   // slam: every cell this run stands for. A mode that ignores a varied
   // parameter (orb ignores the detector's and the rejection's) runs once for
   // all of that parameter's levels, and its result counts in each cell.
@@ -81,10 +82,6 @@ struct SweepLayout {
   std::string log_file(const std::string& job_id) const;    // logs/<id>.log
   std::string report_dir() const;                           // report/
 };
-
-// A job is finished when its record exists (records are written last and
-// atomically, so a killed job never looks finished).
-bool job_finished(const SweepLayout& layout, const SweepJob& job);
 
 // Writes sweep.json, or checks that an existing one describes the same sweep
 // (so a resume cannot mix two grids in one folder). Throws Error naming the

@@ -1,13 +1,17 @@
 #include "tools/harness/sweep_plan.h"
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <set>
 
 #include "common/error.h"
 #include "common/testing/error_of.h"
 #include "tools/harness/run_record.h"
+#include "tools/harness/sweep_job_state.h"
 
 namespace fs = std::filesystem;
 
@@ -109,6 +113,39 @@ TEST(SweepPlan, AFolderHoldsOneSweepAndRecordsMarkFinishedJobs) {
   d.id = render.id;
   write_record(layout.dataset_record(render.id), to_json(d));
   EXPECT_TRUE(job_finished(layout, render));
+  fs::remove_all(root);
+}
+
+TEST(SweepJobState, ARecordIsDoneOnlyWhenItReadsBackAsThisJobs) {
+  const fs::path root = fs::temp_directory_path() / ("sweep_job_state_" + std::to_string(getpid()));
+  fs::remove_all(root);
+  const SweepLayout layout{root.string()};
+  const SweepPlan plan = make_sweep_plan(grid_spec());
+  const SweepJob& render = plan.jobs[0];
+  const SweepJob& other = plan.jobs[1];
+  EXPECT_EQ(job_record_state(layout, render).state, RecordState::kNotStarted);
+
+  write_failure_record(layout, render.id, {{"id", render.id}});
+  EXPECT_EQ(job_record_state(layout, render).state, RecordState::kFailed);
+
+  fs::create_directories(root / "data");
+  std::ofstream(layout.dataset_record(render.id)) << "{\"id\": \"" << render.id << "\", \"fr";
+  JobRecordState s = job_record_state(layout, render);
+  EXPECT_EQ(s.state, RecordState::kCorrupt);
+  EXPECT_EQ(s.problem.rfind(layout.dataset_record(render.id) + ": corrupt record", 0), 0u)
+      << s.problem;
+  EXPECT_FALSE(job_finished(layout, render));
+
+  DatasetRecord d;
+  d.id = other.id;  // another job's record in its place
+  write_record(layout.dataset_record(render.id), to_json(d));
+  s = job_record_state(layout, render);
+  EXPECT_EQ(s.state, RecordState::kCorrupt);
+  EXPECT_NE(s.problem.find("the record of job '" + other.id + "'"), std::string::npos) << s.problem;
+
+  d.id = render.id;
+  write_record(layout.dataset_record(render.id), to_json(d));
+  EXPECT_EQ(job_record_state(layout, render).state, RecordState::kDone);  // the record wins
   fs::remove_all(root);
 }
 

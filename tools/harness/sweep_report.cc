@@ -71,11 +71,17 @@ std::string spec_html(const SweepPlan& plan, const SweepSummary& summary) {
          "error level unless a detector parameter is varied, local mapping " +
          (spec.sync_mapping ? "in the tracking thread (reproducible)" : "threaded") +
          "</li>\n</ul>\n";
-  size_t failed = 0;
-  for (const auto& r : summary.runs) failed += !r.ok;
+  size_t without_trajectory = 0;
+  for (const auto& r : summary.runs) without_trajectory += !r.ok;
+  // The words of `depot sweep status` (sweep_job_state.h).
+  std::string notes;
+  if (without_trajectory)
+    notes += ", " + std::to_string(without_trajectory) + " without a trajectory";
+  if (summary.failed_jobs) notes += ", " + std::to_string(summary.failed_jobs) + " failed";
+  if (!summary.corrupt.empty())
+    notes += ", " + std::to_string(summary.corrupt.size()) + " with a corrupt record (left out)";
   out += "<p class=\"status\">" + std::to_string(summary.runs.size()) + " of " +
-         std::to_string(summary.expected_runs) + " runs finished" +
-         (failed ? ", " + std::to_string(failed) + " without a trajectory" : std::string()) +
+         std::to_string(summary.expected_runs) + " runs finished" + notes +
          (summary.runs.size() < summary.expected_runs
               ? ". The sweep is incomplete: resume it with <code>depot sweep resume</code>."
               : ".") +
@@ -94,6 +100,7 @@ ReportFiles write_sweep_report(const SweepPlan& plan, const SweepLayout& layout,
   ReportFiles files;
   files.runs_found = summary.runs.size();
   files.runs_expected = summary.expected_runs;
+  files.corrupt = summary.corrupt;
 
   const struct {
     const char* csv;

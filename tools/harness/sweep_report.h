@@ -15,6 +15,7 @@ struct ReportFiles {
   std::string markdown;           // report/tables.md
   std::string ablation_markdown;  // the Table 2 block, for the terminal
   size_t runs_found = 0, runs_expected = 0;
+  std::vector<std::string> corrupt;  // records left out: "<path>: <problem>"
 };
 
 // `figure_runs`: run ids whose trajectory figures to embed (empty = default);

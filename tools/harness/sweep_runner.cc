@@ -2,11 +2,15 @@
 
 #include <cstdio>
 #include <map>
+#include <set>
 
 #include "common/error.h"
 #include "tools/harness/process_pool.h"
+#include "tools/harness/slurm_submission.h"
 #include "tools/harness/sweep_folder.h"
+#include "tools/harness/sweep_job_state.h"
 #include "tools/harness/sweep_progress.h"
+#include "tools/harness/sweep_status.h"
 
 namespace depot::harness {
 
@@ -19,9 +23,11 @@ SweepRunResult run_sweep(const SweepPlan& plan, const SweepLayout& layout,
                          const SweepRunOptions& options, const std::atomic<bool>& stop) {
   SweepRunResult result;
   result.jobs = plan.jobs.size();
-  const SweepFolderLock lock(layout.root);
+  SweepFolderLock lock(layout.root, "local");
+  if (!options.assume_queue_empty) require_no_queued_tasks(layout);
   remove_leftovers(layout);
   const PendingWork work = find_pending_work(plan, layout);
+  warn_corrupt_records(work);
   result.already_finished = work.already_finished;
   // A runner stopped between a dataset's last run and its clean-up left it behind.
   if (!plan.spec.keep_data)
@@ -56,8 +62,10 @@ SweepRunResult run_sweep(const SweepPlan& plan, const SweepLayout& layout,
                  result.jobs, layout.root.c_str(), result.already_finished, processes.size(),
                  options.workers);
 
+  std::set<std::string> running;  // for `sweep status`, in the lock file
   auto on_finished = [&](size_t p, const JobOutcome& outcome) {
     const SweepJob& job = plan.jobs[plan_index[p]];
+    if (running.erase(job.id)) lock.set_running(running);
     std::string line;
     if (stop.load() && outcome.state != JobState::kSucceeded) {
       // Stopped by the same Ctrl-C as the sweep: not a failure, keep its data.
@@ -75,13 +83,25 @@ SweepRunResult run_sweep(const SweepPlan& plan, const SweepLayout& layout,
     } else {
       line = job.id + ": FAILED (exit " + std::to_string(outcome.exit_code) + "), see " +
              layout.log_file(job.id);
+      write_failure_record(layout, job.id,
+                           {{"id", job.id},
+                            {"exit_code", outcome.exit_code},
+                            {"log", layout.log_file(job.id)},
+                            {"log_tail", file_tail(layout.log_file(job.id), 8)}});
     }
-    if (job.kind == JobKind::kSlam && --runs_left[job.dataset_id] == 0 && !plan.spec.keep_data)
-      remove_dataset(layout, job.dataset_id);
+    const bool dataset_used_up =
+        job.kind == JobKind::kSlam ? --runs_left[job.dataset_id] == 0 : runs_left[job.id] == 0;
+    if (dataset_used_up && !plan.spec.keep_data) remove_dataset(layout, job.dataset_id);
     progress.finished(line);
   };
   // A line as each job starts, so a long first job does not look like a hang.
-  auto on_started = [&](size_t p) { progress.started(plan.jobs[plan_index[p]].id); };
+  auto on_started = [&](size_t p) {
+    const SweepJob& job = plan.jobs[plan_index[p]];
+    remove_failure_record(layout, job.id);  // a new chance
+    running.insert(job.id);
+    lock.set_running(running);
+    progress.started(job.id);
+  };
   const PoolSummary pool =
       run_process_jobs(processes, options.workers, on_finished, stop, on_started);
   result.succeeded = pool.succeeded;

@@ -3,7 +3,9 @@
 // on a number of local workers; prints one progress line per finished job
 // and removes a dataset once all its runs are done (unless keep_data). A
 // killed sweep resumes here: finished jobs (those with a record) are
-// skipped, and leftovers of killed jobs are removed.
+// skipped, jobs with a corrupt record run again, and leftovers of killed
+// jobs are removed. A folder once submitted to Slurm is refused while any
+// of its tasks is still queued or running (they would run the same jobs).
 #include <atomic>
 #include <string>
 
@@ -15,6 +17,9 @@ struct SweepRunOptions {
   std::string program;  // the depot executable
   int workers = 1;
   bool progress = true;
+  // Skip the look at the Slurm queue of a folder submitted there (for when
+  // squeue cannot answer and its tasks are known to have ended).
+  bool assume_queue_empty = false;
 };
 
 struct SweepRunResult {

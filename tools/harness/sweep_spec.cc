@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <set>
 #include <utility>
 
 #include "common/error.h"
 #include "common/image_size.h"
 #include "tools/system/system_spec.h"
+
+namespace fs = std::filesystem;
 
 namespace depot::harness {
 namespace {
@@ -92,7 +95,7 @@ void validate(const SweepSpec& spec, const std::string& where) {
   for (const auto& m : spec.modes) {
     if (system::is_system_mode(m)) {
       // Another program: its file must load now, not when its first job runs.
-      system::load_system_spec(system::find_system_file(system::system_of_mode(m)));
+      system::load_system_spec(system_file(spec, m));
     } else if (!known.count(m)) {
       fail(where, "unknown mode '" + m +
                       "' (expected orb, orb+yolo, orb+lk, full, masked, or system:NAME)");
@@ -142,7 +145,22 @@ nlohmann::json to_json(const SweepSpec& spec) {
           {"frames", spec.frames},
           {"width", spec.width},
           {"sync_mapping", spec.sync_mapping},
-          {"keep_data", spec.keep_data}};
+          {"keep_data", spec.keep_data},
+          {"systems", spec.systems}};
+}
+
+void resolve_system_files(SweepSpec& spec) {
+  for (const auto& m : spec.modes)
+    if (system::is_system_mode(m) && !spec.systems.count(m))
+      spec.systems[m] = fs::absolute(system::find_system_file(system::system_of_mode(m)))
+                            .lexically_normal()
+                            .string();
+}
+
+std::string system_file(const SweepSpec& spec, const std::string& mode) {
+  auto it = spec.systems.find(mode);
+  return system::find_system_file(it != spec.systems.end() ? it->second
+                                                           : system::system_of_mode(mode));
 }
 
 SweepSpec sweep_spec_from_json(const nlohmann::json& j, const std::string& where) {
@@ -158,9 +176,13 @@ SweepSpec sweep_spec_from_json(const nlohmann::json& j, const std::string& where
     spec.width = j.at("width").get<int>();
     spec.sync_mapping = j.at("sync_mapping").get<bool>();
     spec.keep_data = j.at("keep_data").get<bool>();
+    // Sweeps from before systems were stored: the names as they resolve here.
+    if (j.contains("systems"))
+      spec.systems = j.at("systems").get<std::map<std::string, std::string>>();
   } catch (const nlohmann::json::exception& e) {
     fail(where, std::string("not a sweep description: ") + e.what());
   }
+  if (!j.contains("systems")) resolve_system_files(spec);
   validate(spec, where);
   return spec;
 }

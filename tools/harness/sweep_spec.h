@@ -3,6 +3,7 @@
 // their levels, fixed settings, modes, seeds and run size. Stored in the
 // sweep folder (sweep.json) so a killed sweep resumes with exactly the same
 // plan, and so a cluster job can run one of its jobs by id.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -55,7 +56,18 @@ struct SweepSpec {
   int width = 640;
   bool sync_mapping = true;  // reproducible runs (mapping in the tracking thread)
   bool keep_data = false;    // keep rendered datasets after their runs finish
+  // Each "system:NAME" mode's system file, absolute (as scenario paths are),
+  // so the sweep's `status`, `resume` and jobs find it from any folder.
+  std::map<std::string, std::string> systems;
 };
+
+// Fills `systems` for every system mode not in it yet: the file the name
+// stands for (tools/system/system_spec.h), made absolute. Throws Error when
+// there is no such file.
+void resolve_system_files(SweepSpec& spec);
+
+// The system file of a "system:NAME" mode of the sweep.
+std::string system_file(const SweepSpec& spec, const std::string& mode);
 
 // Checks names, levels, modes and ranges; throws Error("<where>: ...").
 void validate(const SweepSpec& spec, const std::string& where);

@@ -1,11 +1,13 @@
 #include "tools/harness/sweep_summary.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
 #include <utility>
 
 #include "eval/improvement.h"
+#include "tools/harness/sweep_job_state.h"
 
 namespace fs = std::filesystem;
 
@@ -97,7 +99,7 @@ SweepSummary summarize_records(const SweepPlan& plan, const std::vector<RunRecor
       for (const RunRecord* run : groups[{c, mode}]) {
         e.runs_by_seed[run->seed] = *run;
         ++e.runs;
-        e.failed += !run->ok;
+        e.without_trajectory += !run->ok;
         e.lost += run->lost;
         ate.push_back(run->ate_rmse);
         ate_sd.push_back(run->ate_std);
@@ -129,10 +131,26 @@ SweepSummary summarize_records(const SweepPlan& plan, const std::vector<RunRecor
 
 SweepSummary summarize_sweep(const SweepPlan& plan, const SweepLayout& layout) {
   std::vector<RunRecord> records;
-  for (const auto& job : plan.jobs)
-    if (job.kind == JobKind::kSlam && fs::is_regular_file(layout.run_record(job.id)))
-      records.push_back(read_run_record(layout.run_record(job.id)));
-  return summarize_records(plan, records);
+  std::vector<std::pair<const SweepJob*, RecordState>> unfinished;  // failed or corrupt
+  std::vector<std::string> corrupt;
+  for (const auto& job : plan.jobs) {
+    if (job.kind != JobKind::kSlam) continue;
+    JobRecordState s = job_record_state(layout, job);
+    if (s.state == RecordState::kDone) records.push_back(std::move(*s.run));
+    if (s.state == RecordState::kFailed || s.state == RecordState::kCorrupt)
+      unfinished.emplace_back(&job, s.state);
+    if (s.state == RecordState::kCorrupt) corrupt.push_back(s.problem);
+  }
+  SweepSummary summary = summarize_records(plan, records);
+  summary.corrupt = corrupt;
+  for (const auto& [job, state] : unfinished) {
+    summary.failed_jobs += state == RecordState::kFailed;
+    for (auto& e : summary.entries)
+      if (e.mode == job->mode &&
+          std::find(job->cells.begin(), job->cells.end(), e.cell) != job->cells.end())
+        (state == RecordState::kFailed ? e.failed_jobs : e.corrupt)++;
+  }
+  return summary;
 }
 
 }  // namespace depot::harness

@@ -22,8 +22,10 @@ MeanStd mean_std(const std::vector<double>& values);
 struct CellModeSummary {
   size_t cell = 0;
   std::string mode;
-  int runs = 0;                           // records found
-  int failed = 0;                         // of them, without a trajectory
+  int runs = 0;                           // records found (sweep_job_state.h: done)
+  int without_trajectory = 0;             // of them, runs that kept no trajectory
+  int failed_jobs = 0;                    // no record: the job's process failed
+  int corrupt = 0;                        // a record that does not read back
   int lost = 0;                           // lost frames over all runs
   MeanStd ate_rmse, ate_std;              // m
   MeanStd rpe_trans_rmse, rpe_trans_std;  // m
@@ -57,12 +59,15 @@ struct SweepSummary {
   std::vector<CellModeSummary> entries;  // cell-major, modes in spec order
   std::vector<RunRecord> runs;           // every record found, in plan order
   size_t expected_runs = 0;
+  size_t failed_jobs = 0;            // SLAM jobs whose process failed (no record)
+  std::vector<std::string> corrupt;  // "<record path>: <problem>", left out
   // nullptr when the mode is not part of the sweep.
   const CellModeSummary* find(size_t cell, const std::string& mode) const;
 };
 
-// Reads every run record of the plan that exists (missing ones are simply
-// not counted, so a partial sweep can be reported); a corrupt record throws.
+// Reads every run record of the plan that reads back (missing ones are
+// simply not counted, so a partial sweep can be reported); failed jobs and
+// corrupt records (sweep_job_state.h) are counted and left out.
 SweepSummary summarize_sweep(const SweepPlan& plan, const SweepLayout& layout);
 
 // The same from records already in memory (for tests and tools).

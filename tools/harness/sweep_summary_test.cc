@@ -62,7 +62,7 @@ TEST(SweepSummary, GroupsRecordsByCellAndMode) {
   EXPECT_EQ(orb->lost, 2);
   const CellModeSummary* full = s.find(1, "full");
   EXPECT_EQ(full->runs, 2);
-  EXPECT_EQ(full->failed, 1);
+  EXPECT_EQ(full->without_trajectory, 1);
   EXPECT_DOUBLE_EQ(full->ate_rmse.mean, 0.01);  // the failed run has no ATE
   EXPECT_DOUBLE_EQ(full->tracked_share.mean, 0.45);
   EXPECT_EQ(s.find(0, "orb")->runs, 0);

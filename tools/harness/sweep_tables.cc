@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "eval/improvement.h"
 
@@ -41,13 +42,23 @@ MeanStd moving_share(const SweepPlan& plan, const SweepSummary& s, size_t cell) 
 }
 
 std::string runs_text(const SweepPlan& plan, const SweepSummary& s, size_t cell) {
-  int runs = 0, failed = 0;
+  // The words of `depot sweep status` (sweep_job_state.h).
+  int runs = 0, no_trajectory = 0, failed = 0, corrupt = 0;
   for (const auto& mode : plan.spec.modes)
-    if (const CellModeSummary* e = s.find(cell, mode)) runs += e->runs, failed += e->failed;
+    if (const CellModeSummary* e = s.find(cell, mode)) {
+      runs += e->runs;
+      no_trajectory += e->without_trajectory;
+      failed += e->failed_jobs;
+      corrupt += e->corrupt;
+    }
   std::string t = std::to_string(runs) + " of " +
                   std::to_string(plan.spec.seeds * static_cast<int>(plan.spec.modes.size()));
-  if (failed) t += " (" + std::to_string(failed) + " failed)";
-  return t;
+  std::string notes;
+  for (const auto& [n, what] : {std::pair<int, const char*>{no_trajectory, "without a trajectory"},
+                                {failed, "failed"},
+                                {corrupt, "corrupt"}})
+    if (n) notes += (notes.empty() ? "" : ", ") + std::to_string(n) + " " + what;
+  return notes.empty() ? t : t + " (" + notes + ")";
 }
 
 // The RPE delta the runs used (all runs of a sweep use the same).
@@ -208,7 +219,7 @@ Table rejection_table(const SweepPlan& plan, const SweepSummary& s) {
   t.columns.push_back({"recall", 3, true});
   t.columns.push_back({"tracked", 1, false, " %"});
   t.columns.push_back({"lost frames", 0});
-  t.columns.push_back({"failed runs", 0});
+  t.columns.push_back({"runs without trajectory", 0});
   for (size_t c = 0; c < plan.cells.size(); ++c)
     for (const auto& mode : plan.spec.modes) {
       const CellModeSummary& e = *s.find(c, mode);
@@ -219,7 +230,7 @@ Table rejection_table(const SweepPlan& plan, const SweepSummary& s) {
       row.push_back(number(e.recall));
       row.push_back(number(100 * e.tracked_share.mean));
       row.push_back(number(e.runs ? e.lost : NAN));
-      row.push_back(number(e.runs ? e.failed : NAN));
+      row.push_back(number(e.runs ? e.without_trajectory : NAN));
       t.rows.push_back(row);
     }
   return t;
