@@ -152,9 +152,10 @@ TEST(Perception, BadInputIsOneErrorLine) {
                typo + ":2: class 'persn' is not a class of " + kLabels);
   expect_error("eval detector " + walking_dataset() + " --class-map " + typo,
                typo + ":2: class 'persn' is not a class of " + walking_dataset() + "/classes.txt");
+  // Command-line mistakes: exit 2, before any work (cli_errors_test checks the code).
   expect_error("eval detector --images " + kLabels + " --detector sim",
-               "--detector sim: needs a simulated DATASET");
-  expect_error("eval detector", "depot eval: give a DATASET, --images LABELS.yaml, or both");
+               "eval detector: --detector sim: needs a simulated DATASET");
+  expect_error("eval detector", "eval detector: give a DATASET, --images LABELS.yaml, or both");
   const std::string real = std::string(DEPOT_SHARED_DATA) + "/tum/" + kTumFrame;
   expect_error("eval detector " + real, real + ": no ground-truth boxes (boxes.txt)");
 }
