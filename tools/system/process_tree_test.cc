@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <ostream>
 #include <regex>
 #include <sstream>
 #include <thread>
@@ -29,6 +30,12 @@
 namespace fs = std::filesystem;
 
 namespace depot::system {
+
+// How ctest lists the parameter (gtest would print the enum's bytes).
+void PrintTo(Tracking tracking, std::ostream* out) {
+  *out << (tracking == Tracking::kAuto ? "cgroup where available" : "process scan only");
+}
+
 namespace {
 
 // A folder of this test's own.
