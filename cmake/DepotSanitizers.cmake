@@ -34,3 +34,21 @@ if(DEPOT_SANITIZE_FLAGS)
   endif()
   add_link_options(${DEPOT_SANITIZE_FLAGS})
 endif()
+
+# DEPOT_FUZZ (tests/fuzz/, tools/fuzz.sh): the libFuzzer build. Every
+# library gets coverage instrumentation without libFuzzer's main
+# (-fsanitize=fuzzer-no-link) plus ASan and UBSan, so a reader's bug shows
+# where it is; the fuzz targets themselves link -fsanitize=fuzzer. Only
+# clang has libFuzzer (Debian: clang, libclang-rt-14-dev).
+if(DEPOT_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "DEPOT_FUZZ needs clang (configure with CC=clang CXX=clang++, as tools/fuzz.sh does)")
+  endif()
+  if(DEPOT_SANITIZE_FLAGS)
+    message(FATAL_ERROR "DEPOT_FUZZ brings its own sanitizers; leave DEPOT_SANITIZE empty")
+  endif()
+  set(DEPOT_FUZZ_FLAGS -fsanitize=address,undefined -fno-sanitize-recover=undefined)
+  message(STATUS "depot: fuzz build: -fsanitize=fuzzer-no-link ${DEPOT_FUZZ_FLAGS}")
+  add_compile_options(-fsanitize=fuzzer-no-link ${DEPOT_FUZZ_FLAGS} -fno-omit-frame-pointer -g)
+  add_link_options(${DEPOT_FUZZ_FLAGS})
+endif()

@@ -43,6 +43,8 @@ std::vector<Row> read_rows(const std::string& path, bool commas = false) {
     std::istringstream fields(text);
     std::string f;
     while (fields >> f) row.fields.push_back(f);
+    // Only whitespace (e.g. a vertical tab or form feed): a blank line.
+    if (row.fields.empty()) continue;
     rows.push_back(std::move(row));
   }
   if (in.bad()) fail(path, "read error");

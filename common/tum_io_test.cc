@@ -49,6 +49,16 @@ TEST(TumIo, ErrorsNameFileAndLine) {
       Error);
 }
 
+// Found by fuzzing (tests/fuzz/fuzz_tum_trajectory): a line of whitespace
+// other than spaces and tabs read a first field that was not there.
+TEST(TumIo, LinesOfOnlyWhitespaceAreBlank) {
+  const std::string path = write_temp("whitespace.txt", "# t\n1.0 a\n\v\n \f\r\n2.0 b\n");
+  EXPECT_EQ(read_timestamps(path), (std::vector<double>{1.0, 2.0}));
+  EXPECT_EQ(read_file_list(path).size(), 2u);
+  EXPECT_EQ(detect_tum_file_kind(write_temp("whitespace_first.txt", "\v\n1.0 a\n")),
+            TumFileKind::kFileList);
+}
+
 TEST(TumIo, ReadsKittiPosesAndEurocCsv) {
   const Eigen::Quaterniond q(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY()));
   const Eigen::Matrix3d r = q.toRotationMatrix();

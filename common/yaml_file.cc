@@ -1,10 +1,29 @@
 #include "common/yaml_file.h"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "common/error.h"
 
 namespace depot {
+
+std::string printable(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof(hex), "\\x%02x", static_cast<unsigned char>(c));
+      out += hex;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
 
 YAML::Node load_yaml_file(const std::string& path, const std::string& what) {
   try {
@@ -12,7 +31,8 @@ YAML::Node load_yaml_file(const std::string& path, const std::string& what) {
   } catch (const YAML::BadFile&) {
     fail(path, "cannot open " + what);
   } catch (const YAML::Exception& e) {
-    fail(path + ":" + std::to_string(e.mark.line + 1), "YAML syntax error: " + e.msg);
+    // yaml-cpp quotes the offending character, which may be a newline.
+    fail(path + ":" + std::to_string(e.mark.line + 1), "YAML syntax error: " + printable(e.msg));
   }
 }
 
@@ -27,7 +47,8 @@ void check_known_keys(const YAML::Node& node, const std::vector<std::string>& kn
     if (std::find(known.begin(), known.end(), key) != known.end()) continue;
     std::string list;
     for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
-    fail(yaml_where(path, kv.first), "unknown key '" + key + "' (expected " + list + ")");
+    fail(yaml_where(path, kv.first),
+         "unknown key '" + printable(key) + "' (expected " + list + ")");
   }
 }
 

@@ -12,6 +12,10 @@ namespace depot {
 // Error("<path>:<line>: YAML syntax error: <msg>") when it does not parse.
 YAML::Node load_yaml_file(const std::string& path, const std::string& what);
 
+// `text` from a file as an error message may quote it: one line, control
+// characters escaped ("\n", "\x01").
+std::string printable(const std::string& text);
+
 // "<path>:<line>" of a node of the file at `path`, for error messages.
 std::string yaml_where(const std::string& path, const YAML::Node& node);
 

@@ -1,10 +1,12 @@
 #include "dataset/boxes.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 
 #include "common/error.h"
+#include "common/image_size.h"
 #include "common/text_records.h"
 #include "common/tum_io.h"
 #include "dataset/dataset_files.h"
@@ -22,13 +24,21 @@ BoxRecord parse_box(const std::vector<std::string>& f, const std::string& where)
   b.timestamp = parse_number_field(f[0], "timestamp", where);
   b.id = static_cast<int>(parse_integer_field(f[1], "id", where));
   b.class_name = f[2];
-  b.x1 = static_cast<int>(parse_integer_field(f[3], "x1", where));
-  b.y1 = static_cast<int>(parse_integer_field(f[4], "y1", where));
-  b.x2 = static_cast<int>(parse_integer_field(f[5], "x2", where));
-  b.y2 = static_cast<int>(parse_integer_field(f[6], "y2", where));
-  b.visible_pixels = static_cast<int>(parse_integer_field(f[7], "visible_pixels", where));
+  // Corners beyond the largest image are refused before the int casts
+  // (and the box's area stays an int).
+  long corner[4];
+  static const char* const names[] = {"x1", "y1", "x2", "y2"};
+  for (int i = 0; i < 4; ++i) corner[i] = parse_integer_field(f[3 + i], names[i], where);
+  const bool inside =
+      std::all_of(corner, corner + 4, [](long c) { return c >= 0 && c <= kMaxImageSide; });
+  b.x1 = static_cast<int>(corner[0]);
+  b.y1 = static_cast<int>(corner[1]);
+  b.x2 = static_cast<int>(corner[2]);
+  b.y2 = static_cast<int>(corner[3]);
+  const long visible = parse_integer_field(f[7], "visible_pixels", where);
+  b.visible_pixels = static_cast<int>(std::clamp(visible, -1L, 1L + kMaxImageSide * kMaxImageSide));
   b.moving = parse_flag_field(f[8], "moving", where);
-  if (b.x1 < 0 || b.y1 < 0 || b.x2 <= b.x1 || b.y2 <= b.y1)
+  if (!inside || b.x2 <= b.x1 || b.y2 <= b.y1)
     fail(where,
          "box " + f[3] + " " + f[4] + " " + f[5] + " " + f[6] + " is empty or outside the image");
   if (b.visible_pixels < 1 || b.visible_pixels > b.area())

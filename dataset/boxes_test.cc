@@ -42,6 +42,12 @@ TEST(Boxes, MalformedLinesNameTheFileAndLine) {
       {"1.0 22 desk 1 2 3.5 4 2 0", "x2 '3.5' is not an integer"},
       {"1.0 22 desk 10 2 3 40 5 0", "box 10 2 3 40 is empty or outside the image"},
       {"1.0 22 desk -1 2 3 40 5 0", "box -1 2 3 40 is empty or outside the image"},
+      // Found by fuzzing (tests/fuzz/fuzz_dataset_boxes): the area of a box
+      // this large overflowed an int.
+      {"1.0 22 desk 0 0 222222258 20 5 0", "box 0 0 222222258 20 is empty or outside the image"},
+      {"1.0 22 desk 0 0 4097 20 5 0", "box 0 0 4097 20 is empty or outside the image"},
+      {"1.0 22 desk 0 0 4 4 99999999999 0",
+       "visible_pixels 99999999999 is not in [1, box area 16]"},
       {"1.0 22 desk 1 2 3 4 5 0", "visible_pixels 5 is not in [1, box area 4]"},
       {"1.0 22 desk 1 2 3 4 0 0", "visible_pixels 0 is not in [1, box area 4]"},
       {"1.0 22 desk 1 2 3 4 2 7", "moving '7' is not 0 or 1"},

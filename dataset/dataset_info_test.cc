@@ -107,6 +107,10 @@ TEST(DatasetInfo, MalformedFilesAreOneLineNamingTheFile) {
       {"{\"frames\": \"many\"}", "/info.json: 'frames' is not a whole number"},
       {"{\"camera_cover\": [[1]]}",
        "/info.json: 'camera_cover' is not a list of [first, last] pairs"},
+      // Found by fuzzing (tests/fuzz/fuzz_dataset_info): nlohmann's
+      // out_of_range escaped as another exception.
+      {"{\"dynamic_load\": 1e99999}",
+       "/info.json: not valid JSON: number overflow parsing '1e99999'"},
   };
   for (const auto& c : cases) {
     testing::write_text(dir, "info.json", c.text);

@@ -44,6 +44,9 @@ nlohmann::json read_json_file(const std::string& path, const std::string& what) 
     const size_t end = std::min(text.size(), e.byte > 0 ? e.byte - 1 : 0);
     const long line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(end), '\n');
     fail(path + ":" + std::to_string(line), "not valid JSON: " + plain_message(e));
+  } catch (const nlohmann::json::exception& e) {
+    // E.g. a number too large for a double.
+    fail(path, "not valid JSON: " + plain_message(e));
   }
 }
 

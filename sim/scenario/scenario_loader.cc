@@ -63,11 +63,13 @@ class Fields {
   void allow_only(std::initializer_list<const char*> keys) const {
     std::set<std::string> ok(keys.begin(), keys.end());
     for (const auto& kv : node_) {
-      auto key = kv.first.as<std::string>();
+      if (!kv.first.IsScalar()) fail(where(kv.first), "a key must be a plain name");
+      const std::string key = kv.first.Scalar();
       if (!ok.count(key)) {
         std::string list;
         for (const auto& k : keys) list += std::string(list.empty() ? "" : ", ") + k;
-        fail(where(kv.first), "unknown key '" + key + "' (expected one of: " + list + ")");
+        fail(where(kv.first),
+             "unknown key '" + printable(key) + "' (expected one of: " + list + ")");
       }
     }
   }
@@ -137,7 +139,7 @@ class Fields {
   std::string existing_file(const char* key) const {
     YAML::Node n = node_[key];
     if (!n) return "";
-    const std::string value = n.as<std::string>();
+    const std::string value = str(key);
     const std::string p = resolve_config_path(value, fs::path(file_).parent_path().string());
     std::error_code ec;
     if (!fs::is_regular_file(p, ec))

@@ -182,7 +182,11 @@ void read_body(const std::string& bytes, const std::string& path, MapFileInfo& i
     const double timestamp = in.take<double>();
     const Pose T_cw = take_pose(in);
     r.parent = in.take<int64_t>();
-    r.loops.resize(in.take<uint32_t>());
+    const uint32_t n_loops = in.take<uint32_t>();
+    if (static_cast<uint64_t>(n_loops) * 8 > in.left())
+      fail(path, "truncated map (keyframe " + std::to_string(id) + " claims " +
+                     std::to_string(n_loops) + " loop edges)");
+    r.loops.resize(n_loops);
     for (int64_t& l : r.loops) l = in.take<int64_t>();
     const uint32_t n_covisible = in.take<uint32_t>();
     if (static_cast<uint64_t>(n_covisible) * 12 > in.left()) fail(path, "truncated map");

@@ -3,6 +3,7 @@
 #include "slam/io/map_file.h"
 
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -12,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/binary_io.h"
 #include "common/error.h"
 #include "slam/data/map_point.h"
 #include "tests/support/ba_scene.h"
@@ -148,6 +150,23 @@ TEST_F(MapFileTest, BadFilesAreOneClearError) {
   expect(load_error(kVocabulary, &other), "another camera");
   std::filesystem::remove(path_);
   expect(load_error(), "no such map file");
+}
+
+// Found by fuzzing (tests/fuzz/fuzz_map_file): a count the file's bytes
+// cannot hold, behind a valid checksum, asked for gigabytes of memory.
+TEST_F(MapFileTest, ACountLargerThanTheFileIsOneClearError) {
+  std::string bad = bytes();
+  // The first keyframe's loop edge count: after the header (72 bytes), the
+  // keyframe count and its id, frame id, timestamp, pose and parent.
+  const size_t loops_at = 72 + 4 + 3 * 8 + 12 * 8 + 8;
+  const uint32_t huge = 0xfffffff0u;
+  std::memcpy(&bad[loops_at], &huge, 4);
+  const uint32_t crc = crc32_of(bad, bad.size() - 4);
+  std::memcpy(&bad[bad.size() - 4], &crc, 4);
+  write(bad);
+  const std::string error = load_error();
+  EXPECT_EQ(error.rfind(path_ + ": truncated map (keyframe ", 0), 0u) << error;
+  EXPECT_NE(error.find(" claims 4294967280 loop edges)"), std::string::npos) << error;
 }
 
 TEST_F(MapFileTest, LoadsOnlyIntoAnEmptyMap) {

@@ -105,7 +105,7 @@ SystemSpec load_system_spec(const std::string& path) {
         spec.trajectory_format = TrajectoryFormat::kEuroc;
       else
         fail(yaml_where(path, format),
-             "unknown trajectory_format '" + f + "' (expected tum, kitti, euroc)");
+             "unknown trajectory_format '" + printable(f) + "' (expected tum, kitti, euroc)");
     }
     if (spec.writes_timestamps && spec.trajectory_format != TrajectoryFormat::kKitti)
       fail(yaml_where(path, command),
@@ -120,7 +120,7 @@ SystemSpec load_system_spec(const std::string& path) {
       for (const auto& kv : env) spec.env[kv.first.as<std::string>()] = kv.second.as<std::string>();
     }
   } catch (const YAML::Exception& e) {
-    fail(path + ":" + std::to_string(e.mark.line + 1), "bad value: " + e.msg);
+    fail(path + ":" + std::to_string(e.mark.line + 1), "bad value: " + printable(e.msg));
   }
   return spec;
 }

@@ -75,6 +75,27 @@ TEST(SystemSpec, BadFilesNameTheFileAndTheProblem) {
             std::string::npos);
 }
 
+// Found by fuzzing (tests/fuzz/fuzz_system_spec): text of the file quoted
+// in an error kept its newlines, so the error was more than one line.
+TEST(SystemSpec, AnErrorQuotingTheFileIsOneLine) {
+  // yaml-cpp's message quotes the character after the backslash, here NUL.
+  const char escape[] = "command: [x, \"{trajectory}\"]\nenv: \"\\\0\"\n";
+  const std::string syntax = load_error("escape", std::string(escape, sizeof(escape) - 1));
+  EXPECT_NE(syntax.find("depot_system_spec_escape.yaml:2: YAML syntax error: unknown escape "
+                        "character: \\x00"),
+            std::string::npos)
+      << syntax;
+  const std::string format = load_error(
+      "format_newline", "command: [x, \"{trajectory}\"]\ntrajectory_format: \"a\\nb\\x01\"\n");
+  EXPECT_NE(format.find(":2: unknown trajectory_format 'a\\nb\\x01' (expected tum, kitti, euroc)"),
+            std::string::npos)
+      << format;
+  const std::string key =
+      load_error("key_newline", "command: [x, \"{trajectory}\"]\n\"a\\nb\": 1\n");
+  EXPECT_NE(key.find(":2: unknown key 'a\\nb' (expected"), std::string::npos) << key;
+  EXPECT_EQ(key.find('\n'), std::string::npos) << key;
+}
+
 TEST(SystemSpec, NamesFindShippedFilesAndPathsFindTheirs) {
   EXPECT_TRUE(is_system_mode("system:open3d_odometry"));
   EXPECT_FALSE(is_system_mode("full"));
