@@ -138,7 +138,8 @@ SimDetectorConfig load_sim_detector_config(const YAML::Node& node, const std::st
   bool sets_miss_rate = false, sets_class_miss_rate = false;
   bool sets_confusion = false, sets_class_confusion_rate = false;
   for (const auto& kv : node) {
-    const std::string key = kv.first.as<std::string>();
+    if (!kv.first.IsScalar()) fail(at(where, kv.first), "a key must be a plain name");
+    const std::string key = kv.first.Scalar();
     sets_miss_rate |= key == "miss_rate";
     sets_class_miss_rate |= key == "class_miss_rate";
     sets_confusion |= key == "class_confusion";
@@ -177,7 +178,7 @@ SimDetectorConfig load_sim_detector_config(const YAML::Node& node, const std::st
       const DoubleField* f = nullptr;
       for (const DoubleField& d : kDoubles)
         if (key == d.key) f = &d;
-      if (!f) fail(at(where, kv.first), "unknown key '" + key + "'");
+      if (!f) fail(at(where, kv.first), "unknown key '" + printable(key) + "'");
       c.*f->field = read<double>(v, key, where);
       check(*f, c.*f->field, here);
     }

@@ -134,6 +134,11 @@ TEST(SimDetectorConfig, RangeErrorsNameTheLineAndTheKey) {
 TEST(SimDetectorConfig, BadKeysAndValuesAreErrors) {
   EXPECT_EQ(error_of([] { from("miss_rate: 0.1\nmis_rate: 0.2"); }),
             "cfg.yaml:2: unknown key 'mis_rate'");
+  // Found by fuzzing (tests/fuzz/fuzz_detector_config): a key with a
+  // newline made a two-line error, a map as a key a yaml-cpp exception.
+  EXPECT_EQ(error_of([] { from("miss_rate: 0.1\n\"class_co\\nx\": 0.2"); }),
+            "cfg.yaml:2: unknown key 'class_co\\nx'");
+  EXPECT_EQ(error_of([] { from("{a: 1}: 0.2"); }), "cfg.yaml:1: a key must be a plain name");
   EXPECT_EQ(error_of([] { from("jitter: lots"); }), "cfg.yaml:1: bad value for 'jitter'");
   EXPECT_EQ(error_of([] { from("perfect: maybe"); }), "cfg.yaml:1: bad value for 'perfect'");
   EXPECT_EQ(error_of([] { from("latency_frames: 1.5"); }),
