@@ -9,6 +9,7 @@
 
 #include "common/binary_io.h"
 #include "common/error.h"
+#include "common/image_size.h"
 #include "common/staged_file.h"
 #include "slam/data/map_point.h"
 #include "slam/place/vocabulary_file.h"
@@ -153,6 +154,12 @@ MapFileInfo read_header(const std::string& path, std::string& bytes) {
     *v = in.take<double>();
   info.levels = in.take<int32_t>();
   info.scale_factor = in.take<float>();
+  const PinholeCamera& c = info.camera;
+  if (!image_size_ok(c.width, c.height) ||
+      !(c.fx > 0 && c.fy > 0 && std::isfinite(c.fx) && std::isfinite(c.fy) && std::isfinite(c.cx) &&
+        std::isfinite(c.cy) && std::isfinite(c.bf)))
+    fail(path,
+         "corrupt map (camera " + std::to_string(c.width) + "x" + std::to_string(c.height) + ")");
   if (info.levels < 1 || info.levels > 32 || !(info.scale_factor > 1.0f))
     fail(path, "corrupt map (ORB pyramid of " + std::to_string(info.levels) + " levels)");
   info.header_bytes = in.at();
@@ -211,6 +218,11 @@ void read_body(const std::string& bytes, const std::string& path, MapFileInfo& i
       kp.angle = in.take<float>();
       kp.response = in.take<float>();
       kp.octave = in.take<int32_t>();
+      // Near the image (also no NaN): the keyframe's grid indexes by it.
+      const float w = static_cast<float>(camera.width), h = static_cast<float>(camera.height);
+      if (!(kp.pt.x >= -w && kp.pt.x <= 2 * w && kp.pt.y >= -h && kp.pt.y <= 2 * h))
+        fail(path, "corrupt map (keyframe " + std::to_string(id) + ": keypoint " +
+                       std::to_string(i) + " far outside the image)");
       if (kp.octave < 0 || kp.octave >= levels.n_levels)
         fail(path, "corrupt map (keyframe " + std::to_string(id) + ": octave " +
                        std::to_string(kp.octave) + ")");

@@ -169,6 +169,28 @@ TEST_F(MapFileTest, ACountLargerThanTheFileIsOneClearError) {
   EXPECT_NE(error.find(" claims 4294967280 loop edges)"), std::string::npos) << error;
 }
 
+// Found by fuzzing (tests/fuzz/fuzz_map_file): a keypoint far outside the
+// image overflowed the keyframe's grid index.
+TEST_F(MapFileTest, AKeypointOutsideTheImageIsOneClearError) {
+  std::string bad = bytes();
+  // The first keypoint's x: after the first keyframe's loop edges, its
+  // covisible keyframes and its keypoint count.
+  const size_t loops_at = 72 + 4 + 3 * 8 + 12 * 8 + 8;
+  uint32_t n_loops = 0, n_covisible = 0;
+  std::memcpy(&n_loops, &bad[loops_at], 4);
+  const size_t covisible_at = loops_at + 4 + 8 * n_loops;
+  std::memcpy(&n_covisible, &bad[covisible_at], 4);
+  const size_t x_at = covisible_at + 4 + 12 * n_covisible + 4;
+  const float far = -1.6e28f;
+  std::memcpy(&bad[x_at], &far, 4);
+  const uint32_t crc = crc32_of(bad, bad.size() - 4);
+  std::memcpy(&bad[bad.size() - 4], &crc, 4);
+  write(bad);
+  const std::string error = load_error();
+  EXPECT_EQ(error.rfind(path_ + ": corrupt map (keyframe ", 0), 0u) << error;
+  EXPECT_NE(error.find(": keypoint 0 far outside the image)"), std::string::npos) << error;
+}
+
 TEST_F(MapFileTest, LoadsOnlyIntoAnEmptyMap) {
   EXPECT_THROW(load_map_file(path_, camera_, levels(), kVocabulary, scene_.map), Error);
 }
