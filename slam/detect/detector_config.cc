@@ -30,8 +30,8 @@ DetectorConfig load_detector_config(const std::string& yaml_path) {
   const auto& types = dnn_detector_types();
   if (c.type.empty()) fail(yaml_path, "missing 'type' (yolov5, darknet or fastestdet)");
   if (std::find(types.begin(), types.end(), c.type) == types.end())
-    fail(yaml_where(yaml_path, root["type"]),
-         "unknown detector type '" + c.type + "' (expected yolov5, darknet or fastestdet)");
+    fail(yaml_where(yaml_path, root["type"]), "unknown detector type '" + printable(c.type) +
+                                                  "' (expected yolov5, darknet or fastestdet)");
 
   const std::string folder = folder_of(yaml_path);
   c.model = resolve_config_path(read_string(root, "model", yaml_path), folder);

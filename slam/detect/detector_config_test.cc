@@ -118,6 +118,9 @@ TEST(DetectorConfig, ErrorsNameTheFile) {
       {"type: yolov5\nmodel: m.onnx\nnames: c.names\nclasses: person\n", "'classes'"},
       {"type: [yolov5\n", "YAML syntax error"},
       {"- just\n- a list\n", "must be a YAML map"},
+      // Found by fuzzing (tests/fuzz/fuzz_detector_config): a quoted value
+      // with a newline made the error two lines.
+      {"type: \"yolo\\nv7\"\nmodel: m.onnx\nnames: c.names\n", "unknown detector type 'yolo\\nv7'"},
   };
   int i = 0;
   for (const Case& c : cases) {
@@ -125,6 +128,7 @@ TEST(DetectorConfig, ErrorsNameTheFile) {
     const std::string e = error_of(path);
     EXPECT_EQ(e.rfind(path, 0), 0u) << c.yaml << " -> " << e;
     EXPECT_NE(e.find(c.message_part), std::string::npos) << c.yaml << " -> " << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << c.yaml << " -> " << e;
   }
   const std::string missing = dir.file("missing.yaml");
   EXPECT_EQ(error_of(missing), missing + ": cannot open detector config");

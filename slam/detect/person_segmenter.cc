@@ -23,8 +23,8 @@ bool read_choice(const YAML::Node& root, const char* key, const char* yes, const
   const std::string v = read_string(root, key, path);
   if (v.empty()) return fallback;
   if (v != yes && v != no)
-    fail(yaml_where(path, root[key]),
-         std::string("'") + key + "' must be " + yes + " or " + no + ", not '" + v + "'");
+    fail(yaml_where(path, root[key]), std::string("'") + key + "' must be " + yes + " or " + no +
+                                          ", not '" + printable(v) + "'");
   return v == yes;
 }
 
