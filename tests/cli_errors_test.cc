@@ -84,7 +84,7 @@ const std::vector<BadInvocation> kBadInvocations = {
      "--dense-map: has nothing to fuse with --localise-only"},
     {"slam run data -o a.txt --save-map a.txt", "slam run", "--save-map: is the same file as -o"},
     {"slam run data -o c.txt --save-map c.states.txt", "slam run",
-     "--save-map: is the same file as -o (its states file)"},
+     "--save-map: is the same file as the states file of -o (c.states.txt)"},
     {"slam run data -o g.txt --stats g.txt", "slam run", "--stats: is the same file as -o"},
     {"slam run data -o t.txt --mode full --save-map b.bin --dense-map b.bin", "slam run",
      "--save-map: is the same file as --dense-map"},

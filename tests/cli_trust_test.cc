@@ -74,7 +74,7 @@ TEST(OneFileOneOutput, CollidingPathsAreAUsageErrorAndTouchNothing) {
            "/b.bin",
        "--save-map: is the same file as --dense-map"},
       {run + "-o " + dir + "/c.txt --save-map " + dir + "/c.states.txt",
-       "--save-map: is the same file as -o (its states file)"},
+       "--save-map: is the same file as the states file of -o"},
       {run + "--mode full --keypoints " + dir + "/e.txt -o " + dir + "/e.txt",
        "--keypoints: is the same file as -o"},
       {run + "--stats " + dir + "/g.txt -o " + dir + "/g.txt", "--stats: is the same file as -o"},

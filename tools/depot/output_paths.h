@@ -13,7 +13,7 @@ namespace depot::cli {
 class OutputPaths {
  public:
   // `role` names the option on the error line, e.g. "--save-map" or
-  // "-o (its states file)". Empty paths are ignored.
+  // "the states file of -o". Empty paths are ignored.
   void add_file(const std::string& role, const std::string& path);
   // A folder the command writes whole (replaced when it exists): nothing else
   // may be written inside it.

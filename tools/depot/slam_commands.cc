@@ -114,8 +114,8 @@ void run_slam_system(const RunArgs& a, const CLI::App& cmd) {
   OutputPaths outputs;
   outputs.add_input_folder("the dataset", a.options.dataset);
   outputs.add_file("-o", a.output);
-  outputs.add_file("-o (its states file)", slam::frame_states_path(a.output));
-  outputs.add_file("-o (the system's log)", system_log_path(a.output));
+  outputs.add_file("the states file of -o", slam::frame_states_path(a.output));
+  outputs.add_file("the system log of -o", system_log_path(a.output));
   outputs.add_file("--keypoints", a.options.keypoints_csv);
   outputs.check();
   SystemRunArgs s;
@@ -156,7 +156,7 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
   outputs.add_input("--settings", a.options.settings);
   outputs.add_input("--vocabulary", a.options.vocabulary);
   outputs.add_file("-o", a.output);
-  outputs.add_file("-o (its states file)", states_path);
+  outputs.add_file("the states file of -o", states_path);
   outputs.add_file("--keyframes", a.keyframes);
   outputs.add_file("--stats", a.options.stats_csv);
   outputs.add_file("--keypoints", a.options.keypoints_csv);
