@@ -62,19 +62,12 @@ void write_seed(const std::string& path) {
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  if (const char* seed = std::getenv("DEPOT_FUZZ_WRITE_SEED")) {
-    write_seed(seed);
-    std::exit(0);
-  }
+  depot::fuzz::write_seed_if_asked(write_seed);
   return 0;
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  std::string bytes(reinterpret_cast<const char*>(data), size);
-  if (bytes.size() >= 16) {
-    const uint32_t crc = depot::crc32_of(bytes, bytes.size() - 4);
-    std::memcpy(&bytes[bytes.size() - 4], &crc, 4);
-  }
+  const std::string bytes = depot::fuzz::with_valid_checksum(data, size);
   const std::string path = depot::fuzz::write_input(
       "map.bin", reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
   MapFileInfo info;

@@ -29,10 +29,7 @@ void write_seed(const std::string& path) {
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  if (const char* seed = std::getenv("DEPOT_FUZZ_WRITE_SEED")) {
-    write_seed(seed);
-    std::exit(0);
-  }
+  depot::fuzz::write_seed_if_asked(write_seed);
   return 0;
 }
 

@@ -12,11 +12,13 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "common/binary_io.h"
 #include "common/error.h"
 
 namespace depot::fuzz {
@@ -79,6 +81,29 @@ void expect_clean(const std::string& names, Read read) {
   } catch (...) {
     finding("escaped exception of unknown type");
   }
+}
+
+// For LLVMFuzzerInitialize of a target whose seed the project's own writer
+// makes: with DEPOT_FUZZ_WRITE_SEED=PATH (tools/fuzz.sh) the seed is written
+// there by `write_seed` and the process ends.
+template <typename WriteSeed>
+void write_seed_if_asked(WriteSeed write_seed) {
+  if (const char* seed = std::getenv("DEPOT_FUZZ_WRITE_SEED")) {
+    write_seed(seed);
+    std::exit(0);
+  }
+}
+
+// The input with a valid CRC-32 over all but its last 4 bytes written into
+// them (as the map and vocabulary files end), so mutations get past the
+// checksum into the body.
+inline std::string with_valid_checksum(const uint8_t* data, size_t size) {
+  std::string bytes(reinterpret_cast<const char*>(data), size);
+  if (bytes.size() >= 16) {
+    const uint32_t crc = crc32_of(bytes, bytes.size() - 4);
+    std::memcpy(&bytes[bytes.size() - 4], &crc, 4);
+  }
+  return bytes;
 }
 
 }  // namespace depot::fuzz
