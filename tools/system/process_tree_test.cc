@@ -5,6 +5,7 @@
 #include "tools/system/process_tree.h"
 
 #include <dirent.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -47,6 +48,20 @@ fs::path test_folder(const std::string& tag) {
   return p;
 }
 
+// A /proc file's bytes, "" when the process is gone. Read with read(2):
+// the file of a process that exits meanwhile fails with ESRCH, which
+// libstdc++'s filebuf throws through istreambuf_iterator.
+std::string read_proc_file(const fs::path& path) {
+  std::string out;
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return out;
+  char buffer[4096];
+  ssize_t n = 0;
+  while ((n = ::read(fd, buffer, sizeof buffer)) > 0) out.append(buffer, static_cast<size_t>(n));
+  ::close(fd);
+  return n < 0 ? std::string() : out;
+}
+
 // Running processes (zombies have no command line) whose command line is
 // exactly `args` (words joined by spaces).
 std::vector<pid_t> processes_running(const std::string& args) {
@@ -54,8 +69,7 @@ std::vector<pid_t> processes_running(const std::string& args) {
   for (const auto& entry : fs::directory_iterator("/proc")) {
     const std::string name = entry.path().filename().string();
     if (name.find_first_not_of("0123456789") != std::string::npos) continue;
-    std::ifstream in(entry.path() / "cmdline", std::ios::binary);
-    std::string cmdline((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::string cmdline = read_proc_file(entry.path() / "cmdline");
     if (cmdline.empty()) continue;
     if (cmdline.back() == '\0') cmdline.pop_back();
     std::replace(cmdline.begin(), cmdline.end(), '\0', ' ');
