@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "common/error.h"
 #include "common/png_codec.h"
@@ -196,7 +197,19 @@ void DatasetWriter::write_text_files() {
       "  baseline: %.4f\n",
       c.width, c.height, c.f, c.f, c.cx, c.cy, c.depth_factor, s.ideal ? 0.0 : s.min_depth,
       s.max_depth, s.ideal ? "ideal" : "kinect", s.baseline);
-  write("calibration.yaml", calib);
+  std::string calibration = calib;
+  if (!s.ideal && (s.exposure > 0 || s.readout > 0)) {
+    // Only where set, so datasets of an instant global shutter stay as
+    // they were. Rows: sim/sensor/shutter.h.
+    std::ostringstream shutter;
+    shutter << "# Colour shutter: the timestamp is the middle of the middle row's exposure;\n"
+            << "# row y is exposed (y / (height - 1) - 0.5) x readout later. Depth, labels and\n"
+            << "# groundtruth.txt belong to the timestamp.\n"
+            << "shutter:\n  exposure: " << s.exposure << "  # s\n  readout: " << s.readout
+            << "  # s, first row to last\n";
+    calibration += shutter.str();
+  }
+  write("calibration.yaml", calibration);
 
   dataset::write_objects(root.string(), objects_file(scenario_.name, instances_, classes_));
   dataset::DatasetInfo info = scenario_info(scenario_, "depot-slam simulator");

@@ -34,12 +34,14 @@ RenderSummary render_dataset(Scenario scenario, const RenderRequest& request) {
   RenderedFrame frame;
   FrameTruth truth;
   SequenceTimings t;
+  double subframes = 0;
   while (sequence.next(frame, truth, &t)) {
     throw_if_interrupted(request.dataset.output);
     summary.physics_ms += t.physics_ms;
     summary.color_depth_ms += t.render.color_depth_ms;
     summary.segmentation_ms += t.render.segmentation_ms;
     summary.convert_ms += t.render.convert_ms;
+    subframes += t.subframes;
     writer.add(std::move(frame), truth);
     frame = RenderedFrame();
     progress.update(static_cast<size_t>(truth.index + 1));
@@ -53,6 +55,7 @@ RenderSummary render_dataset(Scenario scenario, const RenderRequest& request) {
   summary.color_depth_ms /= n;
   summary.segmentation_ms /= n;
   summary.convert_ms /= n;
+  summary.subframes = subframes / n;
   summary.sensor_ms = w.sensor_ms / n;
   summary.encode_write_ms = w.encode_write_ms / n;
   summary.bytes = w.bytes;

@@ -25,6 +25,7 @@ struct RenderSummary {
   double seconds = 0;
   double physics_ms = 0, color_depth_ms = 0, segmentation_ms = 0, convert_ms = 0;  // per frame
   double sensor_ms = 0, encode_write_ms = 0;  // per frame, on writer threads
+  double subframes = 1;                       // renders per frame (exposure, readout)
   size_t bytes = 0;
   std::string output;
 };

@@ -121,4 +121,26 @@ void Renderer::render(mjData* data, RenderedFrame& out, RenderTimings* timings) 
   if (timings) timings->convert_ms = ms_since(t2);
 }
 
+void Renderer::render_colour(mjData* data, cv::Mat& bgr, RenderTimings* timings) {
+  const int w = intrinsics_.width, h = intrinsics_.height;
+  const mjrRect viewport{0, 0, w, h};
+  gl_->make_current();
+  auto t0 = std::chrono::steady_clock::now();
+  mjv_updateScene(model_, data, &option_, nullptr, &camera_, mjCAT_ALL, &scene_);
+  apply_intrinsics();
+  scene_.flags[mjRND_SEGMENT] = 0;
+  scene_.flags[mjRND_IDCOLOR] = 0;
+  mjr_render(viewport, &scene_, &context_);
+  mjr_readPixels(rgb_.data(), nullptr, viewport, &context_);
+  auto t1 = std::chrono::steady_clock::now();
+  if (timings) timings->color_depth_ms = ms_since(t0);
+  bgr.create(h, w, CV_8UC3);
+  for (int y = 0; y < h; ++y) {
+    const unsigned char* src = rgb_.data() + 3 * static_cast<size_t>(h - 1 - y) * w;
+    auto* row = bgr.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < w; ++x) row[x] = cv::Vec3b(src[3 * x + 2], src[3 * x + 1], src[3 * x]);
+  }
+  if (timings) timings->convert_ms = ms_since(t1);
+}
+
 }  // namespace depot::sim

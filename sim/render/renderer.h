@@ -33,6 +33,9 @@ class Renderer {
 
   // Renders the current state of `data` (kinematics must be up to date).
   void render(mjData* data, RenderedFrame& out, RenderTimings* timings = nullptr);
+  // The colour image only (sub-frames of an exposure): the same pixels as
+  // render()'s bgr, without depth and labels.
+  void render_colour(mjData* data, cv::Mat& bgr, RenderTimings* timings = nullptr);
 
  private:
   void apply_intrinsics();

@@ -60,6 +60,11 @@ struct SensorSpec {
   double disparity_step = 0.125;  // px quantisation
   double baseline = 0.075;        // m, projector to IR camera (edge shadows)
   double rgb_noise = 2.0;         // grey levels (sigma)
+  // The colour camera's shutter (sim/sensor/shutter.h states which instant
+  // each row, the depth and the truth belong to): 0 = instant and global.
+  double exposure = 0.0;   // s, each row's integration time
+  double readout = 0.0;    // s, first row to last (rolling shutter)
+  int max_subframes = 15;  // renders per frame at most while either is set
 };
 
 struct ActorSpec {

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iomanip>
 #include <set>
+#include <sstream>
 
 #include "common/config_path.h"
 #include "common/error.h"
@@ -213,7 +215,7 @@ void read_timestamps(const Fields& f, TimestampSpec& t) {
 
 void read_sensor(const Fields& f, SensorSpec& s) {
   f.allow_only({"model", "min_depth", "max_depth", "disparity_noise", "disparity_step", "baseline",
-                "rgb_noise"});
+                "rgb_noise", "exposure", "readout", "max_subframes"});
   std::string model = f.str("model", "kinect");
   if (model != "kinect" && model != "ideal")
     fail(f.where(f.node("model")),
@@ -226,6 +228,32 @@ void read_sensor(const Fields& f, SensorSpec& s) {
   s.baseline = f.number("baseline", s.baseline, 0.0, 1.0);
   s.rgb_noise = f.number("rgb_noise", s.rgb_noise, 0.0, 50.0);
   if (s.min_depth >= s.max_depth) fail(f.where(), "sensor min_depth must be below max_depth");
+  s.exposure = f.number("exposure", s.exposure, 0.0, 0.5);
+  s.readout = f.number("readout", s.readout, 0.0, 0.5);
+  s.max_subframes = static_cast<int>(f.number("max_subframes", s.max_subframes, 3, 99));
+}
+
+std::string format_ms(double seconds) {
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(1) << seconds * 1e3 << " ms";
+  return o.str();
+}
+
+std::string format_hz(double rate) {
+  std::ostringstream o;
+  o << rate << " Hz";
+  return o.str();
+}
+
+// A row's exposure may not reach into the next frame's: the world is
+// rendered forward in time, one frame after the other.
+void check_shutter_fits_frame(const Fields& top, const Scenario& s) {
+  const double span = s.sensor.exposure + s.sensor.readout;
+  if (!s.timestamps.file.empty() || span <= 1.0 / s.timestamps.rate + 1e-12) return;
+  const YAML::Node n = top.node("sensor");
+  fail(top.where(n["readout"] ? n["readout"] : n["exposure"]),
+       "sensor exposure + readout = " + format_ms(span) + " is longer than a frame (" +
+           format_ms(1.0 / s.timestamps.rate) + " at " + format_hz(s.timestamps.rate) + ")");
 }
 
 // `camera_cover: [[start, end], ...]`, seconds since the first frame. Every
@@ -364,7 +392,10 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
   read_motion(Fields(top.node("motion"), source, "motion"), s.motion);
   if (top.has("timestamps"))
     read_timestamps(Fields(top.node("timestamps"), source, "timestamps"), s.timestamps);
-  if (top.has("sensor")) read_sensor(Fields(top.node("sensor"), source, "sensor"), s.sensor);
+  if (top.has("sensor")) {
+    read_sensor(Fields(top.node("sensor"), source, "sensor"), s.sensor);
+    check_shutter_fits_frame(top, s);
+  }
   if (top.has("camera_cover")) s.camera_cover = read_camera_cover(top, s);
 
   if (YAML::Node actors = top.node("actors")) {

@@ -36,5 +36,34 @@ TEST(ScenarioBadInput, AFileThatIsNotAPathIsOneError) {
   std::filesystem::remove(path);
 }
 
+TEST(ScenarioBadInput, ShutterTimesOutOfRangeAreOneError) {
+  const std::string negative = write_scenario(
+      "exposure.yaml", "name: x\nmotion: {type: static}\nsensor: {exposure: -0.01}\n");
+  EXPECT_EQ(error_of([&] { load_scenario(negative); }),
+            negative + ":3: 'exposure' = -0.010000 is out of range [0.000000, 0.500000]");
+  std::filesystem::remove(negative);
+  // Exposure and readout together longer than a frame: the next frame's
+  // first row would start before this one's last ended.
+  const std::string long_readout = write_scenario(
+      "readout.yaml",
+      "name: x\nmotion: {type: static}\nsensor: {exposure: 0.02,\n  readout: 0.02}\n");
+  EXPECT_EQ(
+      error_of([&] { load_scenario(long_readout); }),
+      long_readout +
+          ":4: sensor exposure + readout = 40.0 ms is longer than a frame (33.3 ms at 30 Hz)");
+  // The same through --set, blamed on the option.
+  const std::string fine =
+      write_scenario("fine.yaml", "name: x\nmotion: {type: static}\nsensor: {exposure: 0.02}\n");
+  EXPECT_EQ(error_of([&] {
+              load_scenario(fine, {{"sensor.readout", "0.02"}});
+            }),
+            fine +
+                ": --set sensor.readout=0.02: sensor exposure + readout = 40.0 ms is longer than a "
+                "frame (33.3 ms at 30 Hz)");
+  EXPECT_NO_THROW(load_scenario(fine, {{"sensor.readout", "0.013"}}));
+  std::filesystem::remove(long_readout);
+  std::filesystem::remove(fine);
+}
+
 }  // namespace
 }  // namespace depot::sim

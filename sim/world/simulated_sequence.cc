@@ -8,9 +8,17 @@
 #include "sim/actors/actor_variation.h"
 #include "sim/scene/obstacles.h"
 #include "sim/scene/scene_layout.h"
+#include "sim/sensor/shutter.h"
 #include "sim/world/camera_clearance.h"
 
 namespace depot::sim {
+
+namespace {
+// The distance at which sub-frames are spaced about one pixel of smear
+// apart: nearer surfaces moving fast get coarser steps (still capped by
+// max_subframes in any case).
+constexpr double kSmearDepth = 1.0;  // m
+}  // namespace
 
 std::vector<std::pair<double, double>> frame_timestamps(const Scenario& s) {
   std::vector<std::pair<double, double>> out;
@@ -62,9 +70,29 @@ SimulatedSequence::SimulatedSequence(const Scenario& scenario, GlBackend backend
   for (const Instance& inst : world_->instances())
     if (inst.kind == InstanceKind::kPushable || inst.kind == InstanceKind::kActor)
       tracked_.push_back(&inst);
+  if (!scenario_.sensor.ideal) {
+    shutter_.exposure = scenario_.sensor.exposure;
+    shutter_.readout = scenario_.sensor.readout;
+    shutter_.max_subframes = scenario_.sensor.max_subframes;
+    check_shutter_fits_timestamps();
+  }
   previous_bodies_.resize(tracked_.size());
   for (size_t i = 0; i < tracked_.size(); ++i)
     world_->body_poses(*tracked_[i], previous_bodies_[i]);
+}
+
+void SimulatedSequence::check_shutter_fits_timestamps() const {
+  // The world renders forward in time: one frame's last row may not be
+  // exposed after the next frame's first.
+  for (size_t i = 1; i < stamps_.size() && shutter_.active(); ++i) {
+    const double gap = stamps_[i].first - stamps_[i - 1].first;
+    if (gap + 1e-9 < shutter_.span())
+      fail(scenario_.timestamps.file.empty() ? scenario_.source_path : scenario_.timestamps.file,
+           "frames " + std::to_string(i - 1) + " and " + std::to_string(i) + " are " +
+               std::to_string(gap * 1e3) +
+               " ms apart, less than the sensor's exposure + readout (" +
+               std::to_string(shutter_.span() * 1e3) + " ms)");
+  }
 }
 
 bool SimulatedSequence::next(RenderedFrame& frame, FrameTruth& truth, SequenceTimings* timings) {
@@ -86,20 +114,62 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
   // Under a cover the world and the camera move on as usual; only the images
   // are the covered camera's (nothing rendered, so a cover also costs nothing).
   const bool covered = is_covered(scenario_.camera_cover, since_first);
-  auto t0 = std::chrono::steady_clock::now();
-  world_->advance_to(world_time);
-  const Pose world_camera = motion_->pose_at(t_rgb);
-  world_->set_camera_pose(world_camera);
-  if (timings)
-    timings->physics_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  if (frame && covered) {
-    *frame = covered_frame(scenario_.camera);
-    if (timings) timings->render = RenderTimings();
-  } else if (frame) {
-    renderer_->render(world_->data(), *frame, timings ? &timings->render : nullptr);
+  if (timings) *timings = SequenceTimings();
+  // Sub-frames across the exposure and readout (sim/sensor/shutter.h), in
+  // time order; the one at offset 0 gives depth, labels and truth.
+  const bool shutter = frame && !covered && shutter_.active();
+  const std::vector<double> offsets =
+      shutter ? subframe_offsets(shutter_, image_motion_over_span(t_rgb))
+              : std::vector<double>{0.0};
+  std::vector<cv::Mat> colours;
+  for (double offset : offsets) {
+    auto t0 = std::chrono::steady_clock::now();
+    world_->advance_to(world_time + offset);
+    const Pose world_camera = motion_->pose_at(t_rgb + offset);
+    world_->set_camera_pose(world_camera);
+    if (timings)
+      timings->physics_ms +=
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (frame && covered) {
+      *frame = covered_frame(scenario_.camera);
+    } else if (frame) {
+      RenderTimings r;
+      if (offset == 0.0) {
+        renderer_->render(world_->data(), *frame, &r);
+        colours.push_back(frame->bgr);
+      } else {
+        colours.emplace_back();
+        renderer_->render_colour(world_->data(), colours.back(), &r);
+      }
+      if (timings) {
+        timings->render.color_depth_ms += r.color_depth_ms;
+        timings->render.segmentation_ms += r.segmentation_ms;
+        timings->render.convert_ms += r.convert_ms;
+      }
+    }
+    if (offset == 0.0) record_truth(world_camera, t_rgb, t_depth, covered, truth);
   }
+  if (shutter) frame->bgr = integrate_shutter(colours, offsets, shutter_);
+  if (timings) timings->subframes = static_cast<int>(offsets.size());
+  ++next_;
+  return true;
+}
 
+double SimulatedSequence::image_motion_over_span(double t_rgb) const {
+  const CameraIntrinsics& c = scenario_.camera;
+  const double half = 0.5 * shutter_.span();
+  // The camera's own motion smears a surface 1 m away by this much; an
+  // actor moving as fast as the fastest body part did over the last frame
+  // smears by its speed over the span at the same distance.
+  const double camera =
+      camera_image_motion(motion_->pose_at(t_rgb - half), motion_->pose_at(t_rgb + half), c.f, c.cx,
+                          c.cy, c.width, c.height, kSmearDepth);
+  const double actors = c.f * last_body_speed_ * shutter_.span() / kSmearDepth;
+  return camera + actors;
+}
+
+void SimulatedSequence::record_truth(const Pose& world_camera, double t_rgb, double t_depth,
+                                     bool covered, FrameTruth& truth) {
   const Pose dataset_from_world = motion_->world_from_dataset().inverse();
   truth.index = next_;
   truth.rgb_timestamp = t_rgb;
@@ -108,6 +178,7 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
   truth.covered = covered;
   truth.objects.clear();
   std::vector<Pose> bodies;
+  double fastest_step = 0.0;
   for (size_t i = 0; i < tracked_.size(); ++i) {
     world_->body_poses(*tracked_[i], bodies);
     ObjectState s;
@@ -121,11 +192,11 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
                    rotation_angle_between(bodies[b], previous_bodies_[i][b]) * 180.0 / M_PI);
     }
     s.moving = s.max_translation > kMovingTranslation || s.max_rotation_deg > kMovingRotationDeg;
+    fastest_step = std::max(fastest_step, s.max_translation);
     previous_bodies_[i] = bodies;
     truth.objects.push_back(s);
   }
-  ++next_;
-  return true;
+  last_body_speed_ = fastest_step * scenario_.timestamps.rate;
 }
 
 }  // namespace depot::sim

@@ -11,6 +11,7 @@
 #include "sim/render/renderer.h"
 #include "sim/scenario/class_table.h"
 #include "sim/scenario/scenario.h"
+#include "sim/sensor/shutter.h"
 #include "sim/world/world.h"
 
 namespace depot::sim {
@@ -36,7 +37,8 @@ struct FrameTruth {
 
 struct SequenceTimings {
   double physics_ms = 0;
-  RenderTimings render;
+  RenderTimings render;  // summed over the frame's sub-frames
+  int subframes = 1;     // renders of the frame (sim/sensor/shutter.h)
 };
 
 // The frame timestamps of a scenario: (rgb, depth) pairs.
@@ -55,7 +57,10 @@ class SimulatedSequence {
   SimulatedSequence(const Scenario& scenario, GlBackend backend, bool render = true);
   int frame_count() const { return static_cast<int>(stamps_.size()); }
   int next_index() const { return next_; }
-  // Renders the next frame; false after the last.
+  // Renders the next frame; false after the last. With an exposure or a
+  // readout time (sensor block, not ideal) the colour image integrates
+  // sub-frames around the timestamp (sim/sensor/shutter.h); depth, labels
+  // and truth are the timestamp's.
   bool next(RenderedFrame& frame, FrameTruth& truth, SequenceTimings* timings = nullptr);
   // Advances to the next frame without rendering; false after the last.
   bool next_truth(FrameTruth& truth);
@@ -75,8 +80,15 @@ class SimulatedSequence {
   std::vector<const Instance*> tracked_;            // pushables and actors
   std::vector<std::vector<Pose>> previous_bodies_;  // per tracked instance
   int next_ = 0;
+  ShutterTiming shutter_;       // inactive for an ideal sensor
+  double last_body_speed_ = 0;  // m/s, fastest tracked body over the last frame
 
   bool advance(RenderedFrame* frame, FrameTruth& truth, SequenceTimings* timings);
+  void check_shutter_fits_timestamps() const;
+  // Largest image motion (px) expected over the shutter's span at t_rgb.
+  double image_motion_over_span(double t_rgb) const;
+  void record_truth(const Pose& world_camera, double t_rgb, double t_depth, bool covered,
+                    FrameTruth& truth);
 };
 
 }  // namespace depot::sim

@@ -28,6 +28,8 @@ TEST(SweepSpec, ParsesLevelsAndResolvesAliases) {
   EXPECT_EQ(resolve_parameter("latency").target, ParameterTarget::kDetector);
   EXPECT_EQ(resolve_parameter("latency").key, "latency_frames");
   EXPECT_EQ(resolve_parameter("scenario.sensor.rgb_noise").key, "sensor.rgb_noise");
+  EXPECT_EQ(resolve_parameter("exposure").key, "sensor.exposure");
+  EXPECT_EQ(resolve_parameter("readout").key, "sensor.readout");
   EXPECT_EQ(resolve_parameter("detector.jitter").target, ParameterTarget::kDetector);
   EXPECT_EQ(resolve_parameter("rejection.ego_flow").target, ParameterTarget::kRejection);
   EXPECT_EQ(resolve_parameter("rejection.ego_flow").key, "ego_flow");

@@ -1,0 +1,208 @@
+// Exposure blur and rolling shutter against geometry: the camera turns about
+// its own vertical axis at a known rate omega, so every point near the image
+// centre moves sideways at omega x f pixels per second. An exposure t smears
+// it over omega x t x f pixels; a readout time r shifts the last row
+// omega x r x f pixels against the first. Both are measured on real renders
+// of the depot (sub-frames integrated by sim/sensor/shutter.h) against the
+// instant render of the same instant.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iterator>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "common/pose.h"
+#include "sim/scenario/scenario_loader.h"
+#include "sim/world/simulated_sequence.h"
+#include "tests/support/dataset_reader.h"
+#include "tests/support/render_helpers.h"
+
+namespace depot::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kStart = 1700000000.0;
+constexpr int kWidth = 320;
+
+// A scenario of the empty depot's stage whose camera turns about its own y
+// axis (down in OpenCV axes) at `omega` rad/s, from a TUM file sampled at
+// 1 kHz (its interpolation is then exact to well below a pixel).
+std::string turning_scenario(double omega, const std::string& sensor) {
+  const std::string base = temp_path("shutter");
+  fs::create_directories(base);
+  const std::string trajectory = base + "/turn.txt";
+  std::ofstream t(trajectory);
+  t << std::fixed << std::setprecision(9);
+  for (int i = -200; i <= 400; ++i) {
+    const double time = kStart + i * 1e-3;
+    const double angle = omega * i * 1e-3;
+    // Rotation about y by `angle`: quaternion (0, sin(a/2), 0, cos(a/2)).
+    t << time << " 0 0 0 0 " << std::sin(angle / 2) << " 0 " << std::cos(angle / 2) << "\n";
+  }
+  const std::string yaml = base + "/turn.yaml";
+  std::ofstream(yaml) << "name: shutter_turn\n"
+                      << "scene: " << DEPOT_SOURCE_DIR << "/scenes/depot.yaml\n"
+                      << "classes: " << DEPOT_SOURCE_DIR << "/scenes/classes.yaml\n"
+                      << "frames: 3\n"
+                      << "timestamps: {rate: 30, start: " << std::setprecision(3) << std::fixed
+                      << kStart << "}\n"
+                      << "motion: {type: file, file: " << trajectory
+                      << ", position: [0.0, 0.9, 1.35], look_at: [0.0, 4.5, 0.9]}\n"
+                      << "sensor: " << sensor << "\n";
+  return yaml;
+}
+
+// The colour image of frame 1 (grey, float) and the camera's focal length.
+cv::Mat render_middle_frame(const std::string& yaml, double* focal = nullptr) {
+  sim::Scenario s = sim::load_scenario(yaml);
+  sim::scale_camera(s.camera, kWidth);
+  if (focal) *focal = s.camera.f;
+  sim::SimulatedSequence sequence(s, sim::GlBackend::kOsMesa);
+  sim::RenderedFrame frame;
+  sim::FrameTruth truth;
+  for (int i = 0; i < 2; ++i) EXPECT_TRUE(sequence.next(frame, truth));
+  cv::Mat grey, out;
+  cv::cvtColor(frame.bgr, grey, cv::COLOR_BGR2GRAY);
+  grey.convertTo(out, CV_32F);
+  return out;
+}
+
+// Row `y` of `image` shifted right by `shift` pixels (linear interpolation).
+float shifted(const cv::Mat& image, int y, double x) {
+  const int x0 = static_cast<int>(std::floor(x));
+  const double a = x - x0;
+  const float* row = image.ptr<float>(y);
+  return static_cast<float>((1 - a) * row[x0] + a * row[x0 + 1]);
+}
+
+// The box length (pixels) whose horizontal smear of `sharp` best matches
+// `blurred` over the central window (where omega x f varies by < 3 %).
+double fitted_blur_length(const cv::Mat& sharp, const cv::Mat& blurred) {
+  const int cx = sharp.cols / 2, cy = sharp.rows / 2;
+  double best_length = 0, best_error = 1e300;
+  for (double length = 0.0; length <= 30.0; length += 0.1) {
+    // The box sampled at 0.1 px steps: close enough to the exact kernel.
+    const int taps = std::max(1, static_cast<int>(std::lround(length / 0.1)) + 1);
+    double error = 0;
+    for (int y = cy - 50; y <= cy + 50; y += 2) {
+      for (int x = cx - 40; x <= cx + 40; ++x) {
+        double sum = 0;
+        for (int k = 0; k < taps; ++k) {
+          const double dx = taps == 1 ? 0.0 : -0.5 * length + length * k / (taps - 1);
+          sum += shifted(sharp, y, x + dx);
+        }
+        const double d = sum / taps - blurred.at<float>(y, x);
+        error += d * d;
+      }
+    }
+    if (error < best_error) best_error = error, best_length = length;
+  }
+  return best_length;
+}
+
+// Sideways shift (pixels) of each band of rows of `skewed` against `sharp`,
+// against the band's middle row.
+std::vector<std::pair<double, double>> band_shifts(const cv::Mat& sharp, const cv::Mat& skewed) {
+  const int cx = sharp.cols / 2;
+  std::vector<std::pair<double, double>> out;
+  for (int top = 20; top + 12 <= sharp.rows - 20; top += 12) {
+    double best_shift = 0, best_error = 1e300;
+    for (double shift = -20.0; shift <= 20.0; shift += 0.05) {
+      double error = 0;
+      for (int y = top; y < top + 12; ++y)
+        for (int x = cx - 60; x <= cx + 60; ++x) {
+          const double d = shifted(sharp, y, x + shift) - skewed.at<float>(y, x);
+          error += d * d;
+        }
+      if (error < best_error) best_error = error, best_shift = shift;
+    }
+    out.emplace_back(top + 5.5, best_shift);
+  }
+  return out;
+}
+
+TEST(SimShutter, ExposureSmearsByOmegaTimesExposureTimesFocal) {
+  const double omega = 2.0, exposure = 0.02;
+  double focal = 0;
+  const cv::Mat sharp = render_middle_frame(turning_scenario(omega, "{model: kinect}"), &focal);
+  const cv::Mat blurred = render_middle_frame(
+      turning_scenario(omega, "{model: kinect, exposure: " + std::to_string(exposure) + "}"));
+  const double expected = omega * exposure * focal;
+  const double measured = fitted_blur_length(sharp, blurred);
+  std::printf("blur length %.2f px, omega x t x f = %.2f px\n", measured, expected);
+  EXPECT_NEAR(measured, expected, 0.1 * expected)
+      << "blur length " << measured << " px, omega x t x f = " << expected << " px";
+  // Sanity of the measure itself: the instant render has no smear.
+  EXPECT_LT(fitted_blur_length(sharp, sharp), 0.15);
+}
+
+TEST(SimShutter, ReadoutSkewsByOmegaTimesReadoutTimesFocal) {
+  const double omega = 2.0, readout = 0.03;
+  double focal = 0;
+  const cv::Mat sharp = render_middle_frame(turning_scenario(omega, "{model: kinect}"), &focal);
+  const cv::Mat skewed = render_middle_frame(
+      turning_scenario(omega, "{model: kinect, readout: " + std::to_string(readout) + "}"));
+  const auto bands = band_shifts(sharp, skewed);
+  ASSERT_GE(bands.size(), 10u);
+  // Least-squares slope of shift against row.
+  double sy = 0, ss = 0, syy = 0, sys = 0;
+  for (const auto& [y, s] : bands) sy += y, ss += s, syy += y * y, sys += y * s;
+  const double n = static_cast<double>(bands.size());
+  const double slope = (n * sys - sy * ss) / (n * syy - sy * sy);
+  const double measured = std::abs(slope) * (skewed.rows - 1);
+  const double expected = omega * readout * focal;
+  std::printf("skew %.2f px, omega x r x f = %.2f px\n", measured, expected);
+  EXPECT_NEAR(measured, expected, 0.1 * expected)
+      << "skew over the image " << measured << " px, omega x r x f = " << expected << " px";
+  // The middle row is the timestamp's: no shift there.
+  double middle = 0;
+  for (const auto& [y, s] : bands)
+    if (std::abs(y - (skewed.rows - 1) / 2.0) < 7) middle = s;
+  EXPECT_LT(std::abs(middle), 0.1 * expected);
+}
+
+TEST(SimShutter, IdealSensorAndZeroTimesAreTheInstantCamera) {
+  const cv::Mat instant = render_middle_frame(turning_scenario(2.0, "{model: kinect}"));
+  const cv::Mat ideal =
+      render_middle_frame(turning_scenario(2.0, "{model: ideal, exposure: 0.02, readout: 0.01}"));
+  EXPECT_EQ(cv::norm(instant, ideal, cv::NORM_INF), 0.0);
+}
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// A shutter changes the colour images only: the truth is the timestamp's,
+// byte for byte, and the same seed gives the same dataset.
+TEST(SimShutter, TruthIsTheTimestampsAndDatasetsAreByteIdentical) {
+  SmallRender plain("depot_walking_xyz", 6, 160, false, 5);
+  SmallRender exposed = plain;
+  exposed.set = {{"sensor.exposure", "0.02"}, {"sensor.readout", "0.01"}};
+  const std::string a = render_small(plain);
+  const std::string b = render_small(exposed);
+  const std::string c = render_small(exposed);
+  EXPECT_EQ(compare_trees(b, c), "");
+  for (const char* name : {"groundtruth.txt", "object_poses.txt", "boxes.txt", "rgb.txt"})
+    EXPECT_EQ(file_text(a + "/" + name), file_text(b + "/" + name)) << name;
+  // Labels and depth are the timestamp's too; colour differs.
+  const std::string stamp =
+      "/labels/" + fs::directory_iterator(a + "/labels")->path().filename().string();
+  EXPECT_EQ(file_text(a + stamp), file_text(b + stamp));
+  const std::string depth = "/depth/" + fs::path(stamp).filename().string();
+  EXPECT_EQ(file_text(a + depth), file_text(b + depth));
+  EXPECT_NE(compare_trees(a + "/rgb", b + "/rgb"), "");
+  EXPECT_NE(file_text(b + "/calibration.yaml").find("shutter:\n  exposure: 0.02"),
+            std::string::npos);
+  EXPECT_EQ(file_text(a + "/calibration.yaml").find("shutter:"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace depot::test
