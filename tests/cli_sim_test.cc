@@ -2,6 +2,7 @@
 // non-zero exit and no half-written dataset; EGL renders like OSMesa.
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
@@ -133,6 +134,39 @@ TEST(CliSim, PreviewWritesAContactSheet) {
   EXPECT_GE(img.cols, 3 * 320 - 1);  // RGB | depth | labels
   DepotResult bad = depot("sim preview /nonexistent -o " + sheet);
   EXPECT_NE(bad.code, 0);
+}
+
+}  // namespace
+}  // namespace depot::test
+
+namespace depot::test {
+namespace {
+
+// `depot eval realism`: a small render against the shipped real TUM frame
+// (rgb/ and depth/ without lists), then bad input.
+TEST(CliRealism, ComparesARenderWithTheRealFrameAndWritesAPage) {
+  const std::string real = std::string(DEPOT_SHARED_DATA) + "/tum/fr3_walking_xyz_frame";
+  if (!fs::exists(real)) GTEST_SKIP() << "shared data missing: " << real;
+  const std::string data = render_small({"depot_walking_xyz", 4, 320, false, 3});
+  const std::string page = temp_path("realism") + ".html";
+  DepotResult r =
+      depot("eval realism " + data + " --reference " + real + " --page " + page + " -q");
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* row : {"sharpness median", "noise sigma, grey 96-127", "ORB keypoints median",
+                          "depth holes at depth edges", "image motion median"})
+    EXPECT_NE(r.output.find(row), std::string::npos) << row << "\n" << r.output;
+  EXPECT_NE(r.output.find("fr3_walking_xyz_frame"), std::string::npos) << r.output;
+  std::ifstream in(page);
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("<svg"), std::string::npos);
+  fs::remove(page);
+
+  DepotResult missing = depot("eval realism " + data + " --reference /nonexistent/real -q");
+  EXPECT_EQ(missing.code, 1) << missing.output;
+  EXPECT_EQ(missing.output, "depot: error: /nonexistent/real: dataset folder not found\n");
+  const std::string over = data + "/rgb.txt";
+  DepotResult onto = depot("eval realism " + data + " --page " + over + " -q");
+  EXPECT_EQ(onto.code, 2) << onto.output;
 }
 
 }  // namespace

@@ -1,5 +1,8 @@
 #include "slam/io/tum_sequence.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 
 #include "common/error.h"
@@ -10,6 +13,29 @@ namespace fs = std::filesystem;
 
 namespace depot::slam {
 
+namespace {
+
+// "<timestamp>.png" files of root/sub, in time order; none when the folder
+// is missing or holds other names.
+std::vector<StampedFile> list_stamped_images(const fs::path& root, const std::string& sub) {
+  std::vector<StampedFile> out;
+  std::error_code ec;
+  if (!fs::is_directory(root / sub, ec)) return out;
+  for (const auto& e : fs::directory_iterator(root / sub, ec)) {
+    if (!e.is_regular_file() || e.path().extension() != ".png") continue;
+    const std::string stem = e.path().stem().string();
+    char* end = nullptr;
+    const double t = std::strtod(stem.c_str(), &end);
+    if (stem.empty() || *end != '\0' || !std::isfinite(t)) return {};
+    out.push_back({t, sub + "/" + e.path().filename().string()});
+  }
+  std::sort(out.begin(), out.end(),
+            [](const StampedFile& a, const StampedFile& b) { return a.timestamp < b.timestamp; });
+  return out;
+}
+
+}  // namespace
+
 TumSequence::TumSequence(const std::string& folder, double depth_factor)
     : folder_(folder), depth_factor_(depth_factor) {
   std::error_code ec;
@@ -19,10 +45,20 @@ TumSequence::TumSequence(const std::string& folder, double depth_factor)
     frames_ = read_associations((root / "associations.txt").string());
     return;
   }
-  if (!fs::is_regular_file(root / "rgb.txt") || !fs::is_regular_file(root / "depth.txt"))
-    fail(folder, "not a TUM RGB-D folder (needs associations.txt, or rgb.txt and depth.txt)");
-  auto rgb = read_file_list((root / "rgb.txt").string());
-  auto depth = read_file_list((root / "depth.txt").string());
+  std::vector<StampedFile> rgb, depth;
+  if (fs::is_regular_file(root / "rgb.txt") && fs::is_regular_file(root / "depth.txt")) {
+    rgb = read_file_list((root / "rgb.txt").string());
+    depth = read_file_list((root / "depth.txt").string());
+  } else {
+    // A recording cut down to its image folders (e.g. one frame of a real
+    // sequence): the files' names are their timestamps, as TUM names them.
+    rgb = list_stamped_images(root, "rgb");
+    depth = list_stamped_images(root, "depth");
+    if (rgb.empty() || depth.empty())
+      fail(folder,
+           "not a TUM RGB-D folder (needs associations.txt, rgb.txt and depth.txt, or "
+           "rgb/ and depth/ holding images named by their timestamps)");
+  }
   std::vector<double> rgb_t, depth_t;
   for (const auto& r : rgb) rgb_t.push_back(r.timestamp);
   for (const auto& d : depth) depth_t.push_back(d.timestamp);
@@ -30,8 +66,10 @@ TumSequence::TumSequence(const std::string& folder, double depth_factor)
     frames_.push_back({rgb[m.reference_index].timestamp, rgb[m.reference_index].path,
                        depth[m.estimate_index].timestamp, depth[m.estimate_index].path});
   if (frames_.empty())
-    fail((root / "rgb.txt").string(),
-         "no rgb timestamp has a depth timestamp within 0.02 s in depth.txt");
+    fail(fs::is_regular_file(root / "rgb.txt") ? (root / "rgb.txt").string() : folder,
+         fs::is_regular_file(root / "rgb.txt")
+             ? "no rgb timestamp has a depth timestamp within 0.02 s in depth.txt"
+             : "no image of rgb/ has one of depth/ within 0.02 s");
 }
 
 std::string TumSequence::calibration_path() const {

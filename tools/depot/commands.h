@@ -11,6 +11,8 @@ void register_eval_commands(CLI::App& app);
 void register_perception_eval_commands(CLI::App* eval_group);
 // `depot eval cloud`, added to the eval group.
 void register_cloud_eval_command(CLI::App* eval_group);
+// `depot eval realism`, added to the eval group.
+void register_realism_eval_command(CLI::App* eval_group);
 // `depot eval rejection`, added to the eval group.
 void register_rejection_eval_command(CLI::App* eval_group);
 void register_sweep_commands(CLI::App& app);

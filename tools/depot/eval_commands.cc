@@ -213,6 +213,7 @@ void register_eval_commands(CLI::App& app) {
   group->require_subcommand(1);
   register_perception_eval_commands(group);
   register_cloud_eval_command(group);
+  register_realism_eval_command(group);
   register_rejection_eval_command(group);
 
   auto ate_args = std::make_shared<AteArgs>();
