@@ -15,6 +15,7 @@
 #include "dataset/label_images.h"
 #include "sim/dataset/boxes.h"
 #include "sim/dataset/truth_files.h"
+#include "sim/sensor/depth_artefacts.h"
 #include "sim/sensor/kinect_model.h"
 
 namespace fs = std::filesystem;
@@ -149,7 +150,10 @@ void DatasetWriter::write_job(Job& job, WriterTimings& timings) {
   cv::Mat depth = job.frame.depth;
   // A covered camera sees exactly nothing: black and no depth, not noise.
   if (!sensor.ideal && !job.covered) {
-    depth = apply_depth_model(job.frame.depth, sensor, scenario_.camera.f, seed);
+    // Artefacts read the exact colour (dark surfaces), so before its noise.
+    apply_depth_artefacts(job.frame.depth, job.frame.bgr, sensor, seed);
+    depth = misregister_depth(apply_depth_model(job.frame.depth, sensor, scenario_.camera.f, seed),
+                              sensor);
     apply_rgb_noise(job.frame.bgr, sensor.rgb_noise, derive_seed(seed, 1));
   }
   cv::Mat depth16 = depth_to_u16(depth, scenario_.camera.depth_factor);
@@ -208,6 +212,20 @@ void DatasetWriter::write_text_files() {
             << "shutter:\n  exposure: " << s.exposure << "  # s\n  readout: " << s.readout
             << "  # s, first row to last\n";
     calibration += shutter.str();
+  }
+  const bool artefacts = s.flying_pixels > 0 || s.dark_dropout > 0 ||
+                         s.misregistration.squaredNorm() > 0 || s.depth_offset != 0;
+  if (!s.ideal && artefacts) {
+    // The truth of what the simulated rig does wrong (a real rig's user
+    // would not know these): sim/sensor/depth_artefacts.h.
+    std::ostringstream block;
+    block << "# Depth artefacts as simulated (truth, not a calibration):\n"
+          << "depth_artefacts:\n  flying_pixels: " << s.flying_pixels
+          << "\n  dark_dropout: " << s.dark_dropout << "\n  misregistration: ["
+          << s.misregistration.x() << ", " << s.misregistration.y()
+          << "]  # px, depth against colour\n  depth_offset: " << s.depth_offset
+          << "  # s, depth stamp minus colour stamp; depth rendered at its own stamp\n";
+    calibration += block.str();
   }
   write("calibration.yaml", calibration);
 

@@ -50,6 +50,12 @@ struct TimestampSpec {
   double rate = 30.0;
   double start = 1700000000.0;
   std::string file;  // TUM list/association/trajectory; resolved path
+  // A real driver's timing (generated timestamps only): each capture is
+  // late or early by a seeded normal draw of this sigma (s, clipped to a
+  // quarter period), and each frame is lost with this probability (the
+  // world moves on; the frame is not written).
+  double jitter = 0.0;
+  double drop_rate = 0.0;
 };
 
 struct SensorSpec {
@@ -65,6 +71,13 @@ struct SensorSpec {
   double exposure = 0.0;   // s, each row's integration time
   double readout = 0.0;    // s, first row to last (rolling shutter)
   int max_subframes = 15;  // renders per frame at most while either is set
+  // Depth artefacts (sim/sensor/depth_artefacts.h), 0 = none.
+  double flying_pixels = 0.0;  // share of depth-edge pixels given a mixed depth
+  double dark_dropout = 0.0;   // chance of no depth on a black surface (none from grey 64)
+  Eigen::Vector2d misregistration{0.0, 0.0};  // px, depth image shifted against colour
+  // s: the depth camera's clock runs this far from the colour camera's; the
+  // depth image is rendered at its own timestamp (generated timestamps only).
+  double depth_offset = 0.0;
 };
 
 struct ActorSpec {

@@ -207,15 +207,22 @@ void read_motion(const Fields& f, CameraMotionSpec& m) {
 }
 
 void read_timestamps(const Fields& f, TimestampSpec& t) {
-  f.allow_only({"rate", "start", "file"});
+  f.allow_only({"rate", "start", "file", "jitter", "drop_rate"});
   t.rate = f.number("rate", t.rate, 0.1, 1000.0);
   t.start = f.number("start", t.start, 0.0, 1e11);
   t.file = f.existing_file("file");
+  t.jitter = f.number("jitter", t.jitter, 0.0, 0.1);
+  t.drop_rate = f.number("drop_rate", t.drop_rate, 0.0, 0.9);
+  if (!t.file.empty() && (t.jitter > 0 || t.drop_rate > 0))
+    fail(f.where(f.node(t.jitter > 0 ? "jitter" : "drop_rate")),
+         "jitter and drop_rate apply to generated timestamps, not to a timestamps file (its "
+         "times are a real driver's already)");
 }
 
 void read_sensor(const Fields& f, SensorSpec& s) {
   f.allow_only({"model", "min_depth", "max_depth", "disparity_noise", "disparity_step", "baseline",
-                "rgb_noise", "exposure", "readout", "max_subframes"});
+                "rgb_noise", "exposure", "readout", "max_subframes", "flying_pixels",
+                "dark_dropout", "misregistration", "depth_offset"});
   std::string model = f.str("model", "kinect");
   if (model != "kinect" && model != "ideal")
     fail(f.where(f.node("model")),
@@ -231,6 +238,12 @@ void read_sensor(const Fields& f, SensorSpec& s) {
   s.exposure = f.number("exposure", s.exposure, 0.0, 0.5);
   s.readout = f.number("readout", s.readout, 0.0, 0.5);
   s.max_subframes = static_cast<int>(f.number("max_subframes", s.max_subframes, 3, 99));
+  s.flying_pixels = f.number("flying_pixels", s.flying_pixels, 0.0, 1.0);
+  s.dark_dropout = f.number("dark_dropout", s.dark_dropout, 0.0, 1.0);
+  s.misregistration = f.vec2("misregistration", s.misregistration);
+  if (s.misregistration.cwiseAbs().maxCoeff() > 50)
+    fail(f.where(f.node("misregistration")), "'misregistration' must be within 50 px");
+  s.depth_offset = f.number("depth_offset", s.depth_offset, -0.1, 0.1);
 }
 
 std::string format_ms(double seconds) {
@@ -248,9 +261,19 @@ std::string format_hz(double rate) {
 // A row's exposure may not reach into the next frame's: the world is
 // rendered forward in time, one frame after the other.
 void check_shutter_fits_frame(const Fields& top, const Scenario& s) {
+  const YAML::Node n = top.node("sensor");
+  // The depth camera's own instant stays within its frame's slot, beside
+  // the colour camera's.
+  if (n["depth_offset"] && !s.timestamps.file.empty() && s.sensor.depth_offset != 0)
+    fail(top.where(n["depth_offset"]),
+         "depth_offset applies to generated timestamps (a timestamps file gives the depth "
+         "stamps itself)");
+  if (std::abs(s.sensor.depth_offset) > 0.25 / s.timestamps.rate)
+    fail(top.where(n["depth_offset"]), "sensor depth_offset = " + format_ms(s.sensor.depth_offset) +
+                                           " is more than a quarter frame (" +
+                                           format_ms(0.25 / s.timestamps.rate) + ")");
   const double span = s.sensor.exposure + s.sensor.readout;
   if (!s.timestamps.file.empty() || span <= 1.0 / s.timestamps.rate + 1e-12) return;
-  const YAML::Node n = top.node("sensor");
   fail(top.where(n["readout"] ? n["readout"] : n["exposure"]),
        "sensor exposure + readout = " + format_ms(span) + " is longer than a frame (" +
            format_ms(1.0 / s.timestamps.rate) + " at " + format_hz(s.timestamps.rate) + ")");

@@ -65,5 +65,18 @@ TEST(ScenarioBadInput, ShutterTimesOutOfRangeAreOneError) {
   std::filesystem::remove(fine);
 }
 
+TEST(ScenarioBadInput, TimingAndDepthClockOutOfRangeAreOneError) {
+  const std::string far_depth = write_scenario(
+      "depth_offset.yaml", "name: x\nmotion: {type: static}\nsensor: {depth_offset: 0.02}\n");
+  EXPECT_EQ(error_of([&] { load_scenario(far_depth); }),
+            far_depth + ":3: sensor depth_offset = 20.0 ms is more than a quarter frame (8.3 ms)");
+  const std::string drops = write_scenario(
+      "drop_rate.yaml", "name: x\nmotion: {type: static}\ntimestamps: {drop_rate: 1.5}\n");
+  EXPECT_EQ(error_of([&] { load_scenario(drops); }),
+            drops + ":3: 'drop_rate' = 1.500000 is out of range [0.000000, 0.900000]");
+  std::filesystem::remove(far_depth);
+  std::filesystem::remove(drops);
+}
+
 }  // namespace
 }  // namespace depot::sim

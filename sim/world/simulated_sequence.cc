@@ -1,9 +1,11 @@
 #include "sim/world/simulated_sequence.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "common/error.h"
+#include "common/rng.h"
 #include "common/tum_io.h"
 #include "sim/actors/actor_variation.h"
 #include "sim/scene/obstacles.h"
@@ -20,6 +22,12 @@ namespace {
 constexpr double kSmearDepth = 1.0;  // m
 }  // namespace
 
+std::pair<double, double> frame_instants_range(const Scenario& s) {
+  if (s.sensor.ideal) return {0.0, 0.0};
+  const double half = 0.5 * (s.sensor.exposure + s.sensor.readout);
+  return {std::min(-half, s.sensor.depth_offset), std::max(half, s.sensor.depth_offset)};
+}
+
 std::vector<std::pair<double, double>> frame_timestamps(const Scenario& s) {
   std::vector<std::pair<double, double>> out;
   if (!s.timestamps.file.empty()) {
@@ -32,11 +40,25 @@ std::vector<std::pair<double, double>> frame_timestamps(const Scenario& s) {
       for (double t : read_timestamps(s.timestamps.file)) out.emplace_back(t, t);
     }
   } else {
+    const TimestampSpec& ts = s.timestamps;
+    const double period = 1.0 / ts.rate;
+    // Jitter never lets one frame's instants (shutter, depth) reach into
+    // the next frame's.
+    const auto [lo, hi] = frame_instants_range(s);
+    const double limit = std::max(0.0, std::min(0.25 * period, 0.5 * (period - (hi - lo))));
+    Rng jitter(derive_seed(s.seed, 0x71773e));
+    Rng drops(derive_seed(s.seed, 0xd709));
+    // Round to microseconds, as TUM files are written.
+    auto microseconds = [](double t) { return std::round(t * 1e6) / 1e6; };
     for (int i = 0; i < s.frames; ++i) {
-      // Round to microseconds, as TUM files are written.
-      double t = std::round((s.timestamps.start + i / s.timestamps.rate) * 1e6) / 1e6;
-      out.emplace_back(t, t);
+      double t = ts.start + i / ts.rate;
+      if (ts.jitter > 0) t += std::clamp(ts.jitter * jitter.normal(), -limit, limit);
+      if (ts.drop_rate > 0 && drops.uniform() < ts.drop_rate) continue;
+      const double rgb = microseconds(t);
+      const double depth = s.sensor.ideal ? rgb : microseconds(t + s.sensor.depth_offset);
+      out.emplace_back(rgb, depth);
     }
+    if (out.empty()) fail(s.source_path, "every frame was dropped (timestamps.drop_rate)");
   }
   if (static_cast<int>(out.size()) > s.frames) out.resize(s.frames);
   return out;
@@ -74,24 +96,26 @@ SimulatedSequence::SimulatedSequence(const Scenario& scenario, GlBackend backend
     shutter_.exposure = scenario_.sensor.exposure;
     shutter_.readout = scenario_.sensor.readout;
     shutter_.max_subframes = scenario_.sensor.max_subframes;
-    check_shutter_fits_timestamps();
+    depth_offset_ = scenario_.sensor.depth_offset;
+    check_instants_fit_timestamps();
   }
   previous_bodies_.resize(tracked_.size());
   for (size_t i = 0; i < tracked_.size(); ++i)
     world_->body_poses(*tracked_[i], previous_bodies_[i]);
 }
 
-void SimulatedSequence::check_shutter_fits_timestamps() const {
-  // The world renders forward in time: one frame's last row may not be
-  // exposed after the next frame's first.
-  for (size_t i = 1; i < stamps_.size() && shutter_.active(); ++i) {
+void SimulatedSequence::check_instants_fit_timestamps() const {
+  // The world renders forward in time: one frame's last instant (a row's
+  // exposure, the depth camera's) may not come after the next frame's first.
+  const auto [lo, hi] = frame_instants_range(scenario_);
+  for (size_t i = 1; i < stamps_.size() && hi > lo; ++i) {
     const double gap = stamps_[i].first - stamps_[i - 1].first;
-    if (gap + 1e-9 < shutter_.span())
+    if (gap + 1e-9 < hi - lo)
       fail(scenario_.timestamps.file.empty() ? scenario_.source_path : scenario_.timestamps.file,
            "frames " + std::to_string(i - 1) + " and " + std::to_string(i) + " are " +
                std::to_string(gap * 1e3) +
-               " ms apart, less than the sensor's exposure + readout (" +
-               std::to_string(shutter_.span() * 1e3) + " ms)");
+               " ms apart, less than the sensor's exposure + readout and depth offset (" +
+               std::to_string((hi - lo) * 1e3) + " ms)");
   }
 }
 
@@ -121,8 +145,17 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
   const std::vector<double> offsets =
       shutter ? subframe_offsets(shutter_, image_motion_over_span(t_rgb))
               : std::vector<double>{0.0};
+  // The depth camera's own instant (sensor.depth_offset), in time order
+  // among the colour camera's.
+  const bool own_depth = frame && !covered && depth_offset_ != 0.0;
+  std::vector<double> instants = offsets;
+  if (own_depth)
+    instants.insert(std::upper_bound(instants.begin(), instants.end(), depth_offset_),
+                    depth_offset_);
   std::vector<cv::Mat> colours;
-  for (double offset : offsets) {
+  RenderedFrame depth_frame;
+  bool depth_done = false;
+  for (double offset : instants) {
     auto t0 = std::chrono::steady_clock::now();
     world_->advance_to(world_time + offset);
     const Pose world_camera = motion_->pose_at(t_rgb + offset);
@@ -134,7 +167,10 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
       *frame = covered_frame(scenario_.camera);
     } else if (frame) {
       RenderTimings r;
-      if (offset == 0.0) {
+      if (own_depth && offset == depth_offset_ && !depth_done) {
+        renderer_->render(world_->data(), depth_frame, &r);
+        depth_done = true;
+      } else if (offset == 0.0) {
         renderer_->render(world_->data(), *frame, &r);
         colours.push_back(frame->bgr);
       } else {
@@ -150,7 +186,8 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
     if (offset == 0.0) record_truth(world_camera, t_rgb, t_depth, covered, truth);
   }
   if (shutter) frame->bgr = integrate_shutter(colours, offsets, shutter_);
-  if (timings) timings->subframes = static_cast<int>(offsets.size());
+  if (own_depth) frame->depth = depth_frame.depth;
+  if (timings) timings->subframes = static_cast<int>(instants.size());
   ++next_;
   return true;
 }

@@ -41,8 +41,13 @@ struct SequenceTimings {
   int subframes = 1;     // renders of the frame (sim/sensor/shutter.h)
 };
 
-// The frame timestamps of a scenario: (rgb, depth) pairs.
+// The frame timestamps of a scenario: (rgb, depth) pairs (with the
+// timestamps block's jitter and dropped frames, and the depth clock's offset).
 std::vector<std::pair<double, double>> frame_timestamps(const Scenario& scenario);
+
+// The earliest and latest instant a frame renders, in seconds from its
+// timestamp: the shutter's span and the depth camera's offset.
+std::pair<double, double> frame_instants_range(const Scenario& scenario);
 
 // What a covered RGB-D camera gives: a black colour image, no depth (0 =
 // invalid) and, since nothing is seen, no instance in the labels.
@@ -81,10 +86,11 @@ class SimulatedSequence {
   std::vector<std::vector<Pose>> previous_bodies_;  // per tracked instance
   int next_ = 0;
   ShutterTiming shutter_;       // inactive for an ideal sensor
+  double depth_offset_ = 0;     // s, the depth camera's instant (0 for an ideal sensor)
   double last_body_speed_ = 0;  // m/s, fastest tracked body over the last frame
 
   bool advance(RenderedFrame* frame, FrameTruth& truth, SequenceTimings* timings);
-  void check_shutter_fits_timestamps() const;
+  void check_instants_fit_timestamps() const;
   // Largest image motion (px) expected over the shutter's span at t_rgb.
   double image_motion_over_span(double t_rgb) const;
   void record_truth(const Pose& world_camera, double t_rgb, double t_depth, bool covered,

@@ -18,6 +18,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/pose.h"
+#include "common/tum_io.h"
 #include "sim/scenario/scenario_loader.h"
 #include "sim/world/simulated_sequence.h"
 #include "tests/support/dataset_reader.h"
@@ -34,7 +35,7 @@ constexpr int kWidth = 320;
 // A scenario of the empty depot's stage whose camera turns about its own y
 // axis (down in OpenCV axes) at `omega` rad/s, from a TUM file sampled at
 // 1 kHz (its interpolation is then exact to well below a pixel).
-std::string turning_scenario(double omega, const std::string& sensor) {
+std::string turning_scenario(double omega, const std::string& sensor, double start = kStart) {
   const std::string base = temp_path("shutter");
   fs::create_directories(base);
   const std::string trajectory = base + "/turn.txt";
@@ -52,11 +53,22 @@ std::string turning_scenario(double omega, const std::string& sensor) {
                       << "classes: " << DEPOT_SOURCE_DIR << "/scenes/classes.yaml\n"
                       << "frames: 3\n"
                       << "timestamps: {rate: 30, start: " << std::setprecision(3) << std::fixed
-                      << kStart << "}\n"
+                      << start << "}\n"
                       << "motion: {type: file, file: " << trajectory
                       << ", position: [0.0, 0.9, 1.35], look_at: [0.0, 4.5, 0.9]}\n"
                       << "sensor: " << sensor << "\n";
   return yaml;
+}
+
+// Frame 1, exact (no sensor noise: that is the dataset writer's).
+sim::RenderedFrame middle_frame(const std::string& yaml) {
+  sim::Scenario s = sim::load_scenario(yaml);
+  sim::scale_camera(s.camera, kWidth);
+  sim::SimulatedSequence sequence(s, sim::GlBackend::kOsMesa);
+  sim::RenderedFrame frame;
+  sim::FrameTruth truth;
+  for (int i = 0; i < 2; ++i) EXPECT_TRUE(sequence.next(frame, truth));
+  return frame;
 }
 
 // The colour image of frame 1 (grey, float) and the camera's focal length.
@@ -202,6 +214,57 @@ TEST(SimShutter, TruthIsTheTimestampsAndDatasetsAreByteIdentical) {
   EXPECT_NE(file_text(b + "/calibration.yaml").find("shutter:\n  exposure: 0.02"),
             std::string::npos);
   EXPECT_EQ(file_text(a + "/calibration.yaml").find("shutter:"), std::string::npos);
+}
+
+// The depth camera's own clock: its image is the one an instant camera takes
+// at the depth stamp (the camera turns, so any other instant differs), and
+// depth.txt says so.
+TEST(SimCameraTiming, DepthOffsetRendersDepthAtItsOwnStamp) {
+  const double offset = 0.008;
+  const sim::RenderedFrame shifted = middle_frame(
+      turning_scenario(2.0, "{model: kinect, depth_offset: " + std::to_string(offset) + "}"));
+  const sim::RenderedFrame at_depth_stamp =
+      middle_frame(turning_scenario(2.0, "{model: kinect}", kStart + offset));
+  const sim::RenderedFrame at_colour_stamp = middle_frame(turning_scenario(2.0, "{model: kinect}"));
+  EXPECT_EQ(cv::norm(shifted.depth, at_depth_stamp.depth, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(shifted.depth, at_colour_stamp.depth, cv::NORM_INF), 0.1);
+  // Colour and labels stay the colour stamp's.
+  EXPECT_EQ(cv::norm(shifted.bgr, at_colour_stamp.bgr, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(shifted.instance, at_colour_stamp.instance, cv::NORM_INF), 0.0);
+}
+
+TEST(SimCameraTiming, JitterAndDropsAreADriversAndTheTruthFollows) {
+  SmallRender r("depot_static", 40, 64, false, 9);
+  r.set = {{"timestamps.jitter", "0.003"},
+           {"timestamps.drop_rate", "0.2"},
+           {"sensor.depth_offset", "-0.004"}};
+  const std::string root = render_small(r);
+  const auto rgb = read_file_list(root + "/rgb.txt");
+  const auto depth = read_file_list(root + "/depth.txt");
+  const auto truth = read_tum_trajectory(root + "/groundtruth.txt");
+  ASSERT_EQ(rgb.size(), depth.size());
+  ASSERT_EQ(rgb.size(), truth.size());
+  EXPECT_LT(rgb.size(), 40u);  // dropped frames are missing
+  EXPECT_GT(rgb.size(), 20u);
+  const double period = 1.0 / 30.0;
+  double sum_sq = 0;
+  long last_index = -1;
+  for (size_t i = 0; i < rgb.size(); ++i) {
+    EXPECT_NEAR(depth[i].timestamp - rgb[i].timestamp, -0.004, 2e-6);
+    EXPECT_NEAR(truth[i].timestamp, rgb[i].timestamp, 1e-6);  // truth at the capture
+    const double since = rgb[i].timestamp - 1700000000.0;
+    const long index = std::lround(since / period);
+    const double late = since - index * period;
+    EXPECT_LE(std::abs(late), 0.25 * period + 1e-6);
+    EXPECT_GT(index, last_index);
+    last_index = index;
+    sum_sq += late * late;
+  }
+  const double sigma = std::sqrt(sum_sq / rgb.size());
+  EXPECT_GT(sigma, 0.0015);
+  EXPECT_LT(sigma, 0.0045);
+  // The same scenario and seed: the same frames, byte for byte.
+  EXPECT_EQ(compare_trees(root, render_small(r)), "");
 }
 
 }  // namespace
