@@ -141,7 +141,7 @@ TEST(SimMeshProps, HiddenGeomsLabelNoPixels) {
       sim::load_scenario(scenario_path("depot_walking_xyz"), {{"props_style", "mesh"}});
   sim::scale_camera(s.camera, 160);
   sim::World world(sim::build_scene(sim::load_scene_layout(s.scene_path),
-                                    sim::ClassTable::load(s.classes_path), s));
+                                    sim::ClassTable::load(s.classes_path), s, s.camera));
   sim::Renderer renderer(world.model(), world.camera_id(), s.camera, sim::GlBackend::kOsMesa,
                          world.geom_instances(), world.skin_instances());
   const sim::Instance* chair = nullptr;

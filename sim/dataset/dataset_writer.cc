@@ -191,16 +191,20 @@ void DatasetWriter::write_text_files() {
 
   const CameraIntrinsics& c = scenario_.camera;
   const SensorSpec& s = scenario_.sensor;
+  // The lens an ideal sensor drops (sim/world/simulated_sequence.cc).
+  const LensDistortion l = s.ideal ? LensDistortion{} : s.lens;
   char calib[1024];
   std::snprintf(
       calib, sizeof(calib),
-      "# Pinhole intrinsics of the rendered images (no distortion).\n"
+      "# Intrinsics of the images: pinhole with OpenCV's radial-tangential distortion\n"
+      "# (k1 k2 p1 p2 k3, on normalised coordinates); depth and labels are registered\n"
+      "# to the colour camera and share its lens.\n"
       "camera:\n  model: pinhole\n  width: %d\n  height: %d\n  fx: %.6f\n  fy: %.6f\n  cx: %.6f\n"
-      "  cy: %.6f\n  k1: 0.0\n  k2: 0.0\n  p1: 0.0\n  p2: 0.0\n  k3: 0.0\n"
+      "  cy: %.6f\n  k1: %.9g\n  k2: %.9g\n  p1: %.9g\n  p2: %.9g\n  k3: %.9g\n"
       "depth:\n  factor: %.1f  # PNG value per metre\n  min: %.3f\n  max: %.3f\n  model: %s\n"
       "  baseline: %.4f\n",
-      c.width, c.height, c.f, c.f, c.cx, c.cy, c.depth_factor, s.ideal ? 0.0 : s.min_depth,
-      s.max_depth, s.ideal ? "ideal" : "kinect", s.baseline);
+      c.width, c.height, c.f, c.focal_y(), c.cx, c.cy, l.k1, l.k2, l.p1, l.p2, l.k3, c.depth_factor,
+      s.ideal ? 0.0 : s.min_depth, s.max_depth, s.ideal ? "ideal" : "kinect", s.baseline);
   std::string calibration = calib;
   if (!s.ideal && (s.exposure > 0 || s.readout > 0)) {
     // Only where set, so datasets of an instant global shutter stay as

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "common/lens_model.h"
 #include "sim/actors/path.h"
 #include "sim/scenario/camera_cover.h"
 
@@ -16,8 +17,11 @@ namespace depot::sim {
 struct CameraIntrinsics {
   int width = 640;
   int height = 480;
-  // MuJoCo 2.2 renders square pixels only, so fx == fy == f.
-  double f = 539.2;
+  double f = 539.2;  // fx, pixels
+  // fy; 0 = square pixels (fy = f). MuJoCo 2.2 renders square pixels only,
+  // so other values are made by resampling (sim/sensor/lens.h).
+  double fy = 0.0;
+  double focal_y() const { return fy > 0 ? fy : f; }
   double cx = 320.1;
   double cy = 247.6;
   double depth_factor = 5000.0;  // PNG value per metre
@@ -58,6 +62,10 @@ struct TimestampSpec {
   double drop_rate = 0.0;
 };
 
+// The colour camera's lens (common/lens_model.h; images made by
+// sim/sensor/lens.h), all zero = a pinhole.
+using LensDistortion = LensCoefficients;
+
 struct SensorSpec {
   bool ideal = false;
   double min_depth = 0.4;
@@ -78,6 +86,9 @@ struct SensorSpec {
   // s: the depth camera's clock runs this far from the colour camera's; the
   // depth image is rendered at its own timestamp (generated timestamps only).
   double depth_offset = 0.0;
+  // The colour camera's lens distortion; depth is registered to the colour
+  // camera, so it and the labels share it.
+  LensDistortion lens;
 };
 
 struct ActorSpec {

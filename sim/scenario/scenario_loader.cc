@@ -32,6 +32,7 @@ void scale_camera(CameraIntrinsics& c, int width) {
   c.height = static_cast<int>(std::lround(c.height * s));
   c.width = width;
   c.f *= s;
+  c.fy *= s;  // 0 (square pixels) stays 0
   c.cx = (c.cx + 0.5) * s - 0.5;
   c.cy = (c.cy + 0.5) * s - 0.5;
 }
@@ -166,12 +167,13 @@ const std::set<std::string> kMotionTypes = {"xyz",    "halfsphere", "rpy",
                                             "static", "waypoints",  "file"};
 
 void read_camera(const Fields& f, CameraIntrinsics& cam) {
-  f.allow_only({"width", "height", "f", "cx", "cy", "depth_factor"});
+  f.allow_only({"width", "height", "f", "fy", "cx", "cy", "depth_factor"});
   cam.width = static_cast<int>(f.number("width", cam.width, kMinImageSide, kMaxImageSide));
   cam.height = static_cast<int>(f.number("height", cam.height, kMinImageSide, kMaxImageSide));
   // Scale the default principal point and focal length with the image size.
   double sx = cam.width / 640.0;
   cam.f = f.number("f", 539.2 * sx, 1.0, 1e5);
+  if (f.has("fy")) cam.fy = f.number("fy", cam.f, 1.0, 1e5);
   cam.cx = f.number("cx", 320.1 * sx, 0.0, cam.width);
   cam.cy = f.number("cy", 247.6 * cam.height / 480.0, 0.0, cam.height);
   cam.depth_factor = f.number("depth_factor", cam.depth_factor, 1.0, 1e5);
@@ -222,7 +224,7 @@ void read_timestamps(const Fields& f, TimestampSpec& t) {
 void read_sensor(const Fields& f, SensorSpec& s) {
   f.allow_only({"model", "min_depth", "max_depth", "disparity_noise", "disparity_step", "baseline",
                 "rgb_noise", "exposure", "readout", "max_subframes", "flying_pixels",
-                "dark_dropout", "misregistration", "depth_offset"});
+                "dark_dropout", "misregistration", "depth_offset", "k1", "k2", "p1", "p2", "k3"});
   std::string model = f.str("model", "kinect");
   if (model != "kinect" && model != "ideal")
     fail(f.where(f.node("model")),
@@ -244,6 +246,13 @@ void read_sensor(const Fields& f, SensorSpec& s) {
   if (s.misregistration.cwiseAbs().maxCoeff() > 50)
     fail(f.where(f.node("misregistration")), "'misregistration' must be within 50 px");
   s.depth_offset = f.number("depth_offset", s.depth_offset, -0.1, 0.1);
+  // Whether the lens folds the image is checked where the sequence is made
+  // (sim/sensor/lens.h), before anything is rendered.
+  s.lens.k1 = f.number("k1", s.lens.k1, -1.0, 1.0);
+  s.lens.k2 = f.number("k2", s.lens.k2, -1.0, 1.0);
+  s.lens.p1 = f.number("p1", s.lens.p1, -0.1, 0.1);
+  s.lens.p2 = f.number("p2", s.lens.p2, -0.1, 0.1);
+  s.lens.k3 = f.number("k3", s.lens.k3, -1.0, 1.0);
 }
 
 std::string format_ms(double seconds) {

@@ -223,9 +223,9 @@ class MeshVariants {
 }  // namespace
 
 SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
-                       const Scenario& scenario) {
+                       const Scenario& scenario, const CameraIntrinsics& render_camera) {
   SceneModel model;
-  const CameraIntrinsics& cam = scenario.camera;
+  const CameraIntrinsics& cam = render_camera;
   std::ostringstream x;
   x << "<mujoco model=\"depot\">\n<compiler angle=\"radian\"/>\n<option timestep=\"0.004\"/>\n";
   x << "<visual>\n<global offwidth=\"" << cam.width << "\" offheight=\"" << cam.height << "\"/>\n"

@@ -44,7 +44,9 @@ struct SceneModel {
 
 // Builds the depot from its layout plus the scenario's actors and pushables.
 // Fails (depot::Error) on unknown classes or actors placed outside the hall.
+// The camera renders `render_camera` images (the scenario's camera, or the
+// wider square-pixel canvas a lens is resampled from: sim/sensor/lens.h).
 SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
-                       const Scenario& scenario);
+                       const Scenario& scenario, const CameraIntrinsics& render_camera);
 
 }  // namespace depot::sim

@@ -84,10 +84,17 @@ SimulatedSequence::SimulatedSequence(const Scenario& scenario, GlBackend backend
   enforce_camera_clearance(scenario_,
                            measure_camera_clearance(scenario_, obstacles, *motion_, stamps_));
   scenario_.actors = vary_actors(scenario_.actors, scenario_.world_seed(), obstacles);
-  world_ = std::make_unique<World>(build_scene(layout, classes_, scenario_));
+  // A lens or non-square pixels: render a wider square-pixel canvas and
+  // resample it (sim/sensor/lens.h); --ideal keeps the pixels, drops the lens.
+  const LensDistortion lens = scenario_.sensor.ideal ? LensDistortion{} : scenario_.sensor.lens;
+  if (lens_resamples(scenario_.camera, lens))
+    lens_ = std::make_unique<LensMapping>(
+        make_lens_mapping(scenario_.camera, lens, scenario_.source_path));
+  const CameraIntrinsics& render_camera = lens_ ? lens_->canvas : scenario_.camera;
+  world_ = std::make_unique<World>(build_scene(layout, classes_, scenario_, render_camera));
   if (render)
     renderer_ =
-        std::make_unique<Renderer>(world_->model(), world_->camera_id(), scenario_.camera, backend,
+        std::make_unique<Renderer>(world_->model(), world_->camera_id(), render_camera, backend,
                                    world_->geom_instances(), world_->skin_instances());
   for (const Instance& inst : world_->instances())
     if (inst.kind == InstanceKind::kPushable || inst.kind == InstanceKind::kActor)
@@ -168,14 +175,14 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
     } else if (frame) {
       RenderTimings r;
       if (own_depth && offset == depth_offset_ && !depth_done) {
-        renderer_->render(world_->data(), depth_frame, &r);
+        render(depth_frame, &r);
         depth_done = true;
       } else if (offset == 0.0) {
-        renderer_->render(world_->data(), *frame, &r);
+        render(*frame, &r);
         colours.push_back(frame->bgr);
       } else {
         colours.emplace_back();
-        renderer_->render_colour(world_->data(), colours.back(), &r);
+        render_colour(colours.back(), &r);
       }
       if (timings) {
         timings->render.color_depth_ms += r.color_depth_ms;
@@ -190,6 +197,18 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
   if (timings) timings->subframes = static_cast<int>(instants.size());
   ++next_;
   return true;
+}
+
+void SimulatedSequence::render(RenderedFrame& out, RenderTimings* timings) {
+  if (!lens_) return renderer_->render(world_->data(), out, timings);
+  renderer_->render(world_->data(), canvas_, timings);
+  apply_lens(*lens_, canvas_, out);
+}
+
+void SimulatedSequence::render_colour(cv::Mat& bgr, RenderTimings* timings) {
+  if (!lens_) return renderer_->render_colour(world_->data(), bgr, timings);
+  renderer_->render_colour(world_->data(), canvas_.bgr, timings);
+  apply_lens_colour(*lens_, canvas_.bgr, bgr);
 }
 
 double SimulatedSequence::image_motion_over_span(double t_rgb) const {

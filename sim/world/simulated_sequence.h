@@ -11,6 +11,7 @@
 #include "sim/render/renderer.h"
 #include "sim/scenario/class_table.h"
 #include "sim/scenario/scenario.h"
+#include "sim/sensor/lens.h"
 #include "sim/sensor/shutter.h"
 #include "sim/world/world.h"
 
@@ -65,7 +66,8 @@ class SimulatedSequence {
   // Renders the next frame; false after the last. With an exposure or a
   // readout time (sensor block, not ideal) the colour image integrates
   // sub-frames around the timestamp (sim/sensor/shutter.h); depth, labels
-  // and truth are the timestamp's.
+  // and truth are the timestamp's. A lens distortion (sensor.k1..k3) or
+  // non-square pixels (camera.fy) apply to all three alike.
   bool next(RenderedFrame& frame, FrameTruth& truth, SequenceTimings* timings = nullptr);
   // Advances to the next frame without rendering; false after the last.
   bool next_truth(FrameTruth& truth);
@@ -80,6 +82,8 @@ class SimulatedSequence {
   ClassTable classes_;
   std::unique_ptr<World> world_;
   std::unique_ptr<Renderer> renderer_;
+  std::unique_ptr<LensMapping> lens_;  // null: the render is the image
+  RenderedFrame canvas_;               // the render a lens resamples
   std::unique_ptr<CameraMotion> motion_;
   std::vector<std::pair<double, double>> stamps_;
   std::vector<const Instance*> tracked_;            // pushables and actors
@@ -89,6 +93,9 @@ class SimulatedSequence {
   double depth_offset_ = 0;     // s, the depth camera's instant (0 for an ideal sensor)
   double last_body_speed_ = 0;  // m/s, fastest tracked body over the last frame
 
+  // The dataset camera's images of the world's current state.
+  void render(RenderedFrame& out, RenderTimings* timings);
+  void render_colour(cv::Mat& bgr, RenderTimings* timings);
   bool advance(RenderedFrame* frame, FrameTruth& truth, SequenceTimings* timings);
   void check_instants_fit_timestamps() const;
   // Largest image motion (px) expected over the shutter's span at t_rgb.

@@ -16,10 +16,12 @@ class Features {
   static constexpr int kGridRows = 48;
 
   Features() = default;
-  // Depth (CV_32F metres, 0 = none) is sampled at each keypoint.
+  // Depth (CV_32F metres, 0 = none) is sampled at each keypoint; then the
+  // keypoints are undistorted when the camera has a lens distortion.
   Features(std::vector<cv::KeyPoint> keypoints, cv::Mat descriptors, const cv::Mat& depth,
            const PinholeCamera& camera, const ScaleLevels* levels);
-  // Depth given per keypoint (<= 0: none), as a saved map holds it.
+  // Depth given per keypoint (<= 0: none), as a saved map holds it
+  // (keypoints already undistorted).
   Features(std::vector<cv::KeyPoint> keypoints, cv::Mat descriptors,
            std::vector<float> keypoint_depth, const PinholeCamera& camera,
            const ScaleLevels* levels);
@@ -38,7 +40,7 @@ class Features {
   // BGR colour under each keypoint (set_colours; empty when not known):
   // what a map export paints its points with.
   std::vector<cv::Vec3b> colours;
-  void set_colours(const cv::Mat& bgr);
+  void set_colours(const cv::Mat& bgr);  // the image's pixel under each keypoint
   const ScaleLevels* levels = nullptr;
   PinholeCamera camera;
 
@@ -46,6 +48,7 @@ class Features {
   // u_right from depth, and the grid.
   void index();
   std::vector<std::vector<size_t>> grid_;  // row-major kGridRows x kGridCols
+  double origin_u_ = 0, origin_v_ = 0;     // the grid's top-left corner
   double cell_w_ = 1, cell_h_ = 1;
 };
 

@@ -1,5 +1,7 @@
 #include "slam/dense/dense_cloud.h"
 
+#include "slam/camera/lens_distortion.h"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -28,6 +30,15 @@ uint64_t voxel_key(const Eigen::Vector3d& p, double voxel) {
 
 DenseCloud::DenseCloud(const PinholeCamera& camera, const DenseCloudParams& params)
     : camera_(camera), params_(params) {
+  if (camera_.distorted()) {
+    // Each pixel's undistorted position, once: depth pixels are rays of the
+    // distorted image.
+    std::vector<cv::Point2f> pixels;
+    pixels.reserve(static_cast<size_t>(camera_.width) * camera_.height);
+    for (int v = 0; v < camera_.height; ++v)
+      for (int u = 0; u < camera_.width; ++u) pixels.emplace_back(u, v);
+    undistorted_ = undistort_pixels(camera_, pixels);
+  }
   auto check = [](bool ok, const std::string& what) {
     if (!ok) fail("dense map", what);
   };
@@ -77,7 +88,12 @@ void DenseCloud::add_view(const Pose& T_wc, const cv::Mat& depth, const cv::Mat&
       const float z = z_row[u];
       if (!(z > 0 && z <= params_.max_depth_m)) continue;
       if (out_row && out_row[u]) continue;
-      const Eigen::Vector3d p = R * camera_.unproject(u, v, z) + t;
+      Eigen::Vector3d ray = camera_.unproject(u, v, z);
+      if (!undistorted_.empty()) {
+        const cv::Point2f& q = undistorted_[static_cast<size_t>(v) * camera_.width + u];
+        ray = camera_.unproject(q.x, q.y, z);
+      }
+      const Eigen::Vector3d p = R * ray + t;
       Voxel& cell = voxels_[voxel_key(p, voxel)];
       cell.sum += p;
       const cv::Vec3b& c = colour_row[u];
@@ -98,8 +114,10 @@ std::pair<int, int> DenseCloud::free_and_seen(const Eigen::Vector3d& p) const {
     const Eigen::Vector3d c = view.T_cw * p;
     if (c.z() <= 0) continue;
     const Eigen::Vector2d uv = camera_.project(c);
-    const int u = static_cast<int>(std::lround(uv.x() / stride));
-    const int v = static_cast<int>(std::lround(uv.y() / stride));
+    const cv::Point2f pixel =
+        distort_pixel(camera_, cv::Point2f(static_cast<float>(uv.x()), static_cast<float>(uv.y())));
+    const int u = static_cast<int>(std::lround(pixel.x / stride));
+    const int v = static_cast<int>(std::lround(pixel.y / stride));
     if (u < 0 || v < 0 || u >= view.depth.cols || v >= view.depth.rows) continue;
     const float d = view.depth.at<float>(v, u);
     if (!(d > 0)) continue;

@@ -71,6 +71,7 @@ class DenseCloud {
   };
 
   PinholeCamera camera_;
+  std::vector<cv::Point2f> undistorted_;  // per image pixel, row-major; empty without a lens
   DenseCloudParams params_;
   // What free space needs of each keyframe: its world-to-camera pose, its
   // depth and its grown moving mask (may be empty) on the stride grid.

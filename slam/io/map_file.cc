@@ -1,5 +1,7 @@
 #include "slam/io/map_file.h"
 
+#include "slam/camera/lens_distortion.h"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -18,7 +20,10 @@ namespace depot::slam {
 namespace {
 
 constexpr char kMagic[8] = {'D', 'E', 'P', 'O', 'T', 'M', 'A', 'P'};
-constexpr uint32_t kVersion = 1;
+// Version 2 adds the lens distortion to the camera; version 1 files (no
+// distortion) still load.
+constexpr uint32_t kVersion = 2;
+constexpr uint32_t kOldestVersion = 1;
 constexpr int kDescriptorBytes = 32;
 
 void put_pose(BinaryWriter& out, const Pose& T) {
@@ -37,6 +42,7 @@ void put_camera(BinaryWriter& out, const PinholeCamera& c) {
   out.put<int32_t>(c.width);
   out.put<int32_t>(c.height);
   for (double v : {c.fx, c.fy, c.cx, c.cy, c.bf}) out.put<double>(v);
+  for (double v : {c.lens.k1, c.lens.k2, c.lens.p1, c.lens.p2, c.lens.k3}) out.put<double>(v);
 }
 
 bool same_camera(const PinholeCamera& a, const PinholeCamera& b) {
@@ -44,13 +50,20 @@ bool same_camera(const PinholeCamera& a, const PinholeCamera& b) {
     return std::abs(x - y) <= 1e-6 * std::max(1.0, std::abs(x));
   };
   return a.width == b.width && a.height == b.height && close(a.fx, b.fx) && close(a.fy, b.fy) &&
-         close(a.cx, b.cx) && close(a.cy, b.cy) && close(a.bf, b.bf);
+         close(a.cx, b.cx) && close(a.cy, b.cy) && close(a.bf, b.bf) &&
+         close(a.lens.k1, b.lens.k1) && close(a.lens.k2, b.lens.k2) &&
+         close(a.lens.p1, b.lens.p1) && close(a.lens.p2, b.lens.p2) && close(a.lens.k3, b.lens.k3);
 }
 
 std::string describe(const PinholeCamera& c) {
   std::ostringstream s;
   s << c.width << "x" << c.height << " fx " << c.fx << " fy " << c.fy << " cx " << c.cx << " cy "
     << c.cy;
+  if (c.distorted())
+    s << " k1 " << c.lens.k1 << " k2 " << c.lens.k2 << " p1 " << c.lens.p1 << " p2 " << c.lens.p2
+      << " k3 " << c.lens.k3;
+  else
+    s << " no distortion";
   return s.str();
 }
 
@@ -139,9 +152,9 @@ MapFileInfo read_header(const std::string& path, std::string& bytes) {
   MapFileInfo info;
   BinaryReader in(bytes, path, "map", sizeof(kMagic));
   info.version = in.take<uint32_t>();
-  if (info.version != kVersion)
+  if (info.version < kOldestVersion || info.version > kVersion)
     fail(path, "map format version " + std::to_string(info.version) + ", this build reads " +
-                   std::to_string(kVersion));
+                   std::to_string(kOldestVersion) + " to " + std::to_string(kVersion));
   if (bytes.size() < sizeof(kMagic) + 8 + 4) fail(path, "truncated map");
   if (BinaryReader(bytes, path, "map", bytes.size() - 4).take<uint32_t>() !=
       crc32_of(bytes, bytes.size() - 4))
@@ -152,16 +165,23 @@ MapFileInfo read_header(const std::string& path, std::string& bytes) {
   for (double* v :
        {&info.camera.fx, &info.camera.fy, &info.camera.cx, &info.camera.cy, &info.camera.bf})
     *v = in.take<double>();
+  if (info.version >= 2)
+    for (double* v : {&info.camera.lens.k1, &info.camera.lens.k2, &info.camera.lens.p1,
+                      &info.camera.lens.p2, &info.camera.lens.k3})
+      *v = in.take<double>();
   info.levels = in.take<int32_t>();
   info.scale_factor = in.take<float>();
   const PinholeCamera& c = info.camera;
   if (!image_size_ok(c.width, c.height) ||
       !(c.fx > 0 && c.fy > 0 && std::isfinite(c.fx) && std::isfinite(c.fy) && std::isfinite(c.cx) &&
-        std::isfinite(c.cy) && std::isfinite(c.bf)))
+        std::isfinite(c.cy) && std::isfinite(c.bf) && std::isfinite(c.lens.k1) &&
+        std::isfinite(c.lens.k2) && std::isfinite(c.lens.p1) && std::isfinite(c.lens.p2) &&
+        std::isfinite(c.lens.k3)))
     fail(path,
          "corrupt map (camera " + std::to_string(c.width) + "x" + std::to_string(c.height) + ")");
   if (info.levels < 1 || info.levels > 32 || !(info.scale_factor > 1.0f))
     fail(path, "corrupt map (ORB pyramid of " + std::to_string(info.levels) + " levels)");
+  set_undistorted_bounds(info.camera, path);
   info.header_bytes = in.at();
   return info;
 }

@@ -10,7 +10,8 @@
 // recomputed, so a loaded map tracks as the one in memory does.
 //
 // Layout (little-endian): "DEPOTMAP", u32 version, u32 vocabulary identity,
-// camera (i32 width, height; f64 fx, fy, cx, cy, bf), i32 pyramid levels,
+// camera (i32 width, height; f64 fx, fy, cx, cy, bf; from version 2 f64 k1,
+// k2, p1, p2, k3; keypoints are stored undistorted), i32 pyramid levels,
 // f32 scale factor, u32 keyframe count, keyframes, u32 point count, points,
 // u32 CRC-32.
 #include <cstdint>

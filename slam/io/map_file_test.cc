@@ -2,6 +2,8 @@
 // loaded is what was saved, and every bad file is one clear error.
 #include "slam/io/map_file.h"
 
+#include "slam/camera/lens_distortion.h"
+
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -22,6 +24,9 @@ namespace depot::slam {
 namespace {
 
 using namespace depot::slam::test;
+
+// Magic, version, vocabulary, camera (2 x i32, 10 x f64), levels, scale.
+constexpr size_t kHeaderBytes = 8 + 4 + 4 + 8 + 10 * 8 + 4 + 4;
 
 class MapFileTest : public ::testing::Test {
  protected:
@@ -73,7 +78,7 @@ class MapFileTest : public ::testing::Test {
 TEST_F(MapFileTest, WhatIsLoadedIsWhatWasSaved) {
   Map loaded;
   const MapFileInfo info = load_map_file(path_, camera_, levels(), kVocabulary, loaded);
-  EXPECT_EQ(info.version, 1u);
+  EXPECT_EQ(info.version, 2u);
   EXPECT_EQ(info.keyframes, scene_.map.n_keyframes());
   EXPECT_EQ(info.points, scene_.map.n_map_points());
   ASSERT_EQ(loaded.n_keyframes(), 4u);  // the culled one left out
@@ -135,9 +140,9 @@ TEST_F(MapFileTest, BadFilesAreOneClearError) {
   write(corrupt);
   expect(load_error(), "checksum");
   std::string other_version = good;
-  other_version[8] = 2;
+  other_version[8] = 3;
   write(other_version);
-  expect(load_error(), "version 2, this build reads 1");
+  expect(load_error(), "version 3, this build reads 1 to 2");
   write("not a map at all");
   expect(load_error(), "not a depot map");
   write(good);
@@ -156,9 +161,9 @@ TEST_F(MapFileTest, BadFilesAreOneClearError) {
 // cannot hold, behind a valid checksum, asked for gigabytes of memory.
 TEST_F(MapFileTest, ACountLargerThanTheFileIsOneClearError) {
   std::string bad = bytes();
-  // The first keyframe's loop edge count: after the header (72 bytes), the
+  // The first keyframe's loop edge count: after the header, the
   // keyframe count and its id, frame id, timestamp, pose and parent.
-  const size_t loops_at = 72 + 4 + 3 * 8 + 12 * 8 + 8;
+  const size_t loops_at = kHeaderBytes + 4 + 3 * 8 + 12 * 8 + 8;
   const uint32_t huge = 0xfffffff0u;
   std::memcpy(&bad[loops_at], &huge, 4);
   const uint32_t crc = crc32_of(bad, bad.size() - 4);
@@ -175,7 +180,7 @@ TEST_F(MapFileTest, AKeypointOutsideTheImageIsOneClearError) {
   std::string bad = bytes();
   // The first keypoint's x: after the first keyframe's loop edges, its
   // covisible keyframes and its keypoint count.
-  const size_t loops_at = 72 + 4 + 3 * 8 + 12 * 8 + 8;
+  const size_t loops_at = kHeaderBytes + 4 + 3 * 8 + 12 * 8 + 8;
   uint32_t n_loops = 0, n_covisible = 0;
   std::memcpy(&n_loops, &bad[loops_at], 4);
   const size_t covisible_at = loops_at + 4 + 8 * n_loops;
@@ -189,6 +194,33 @@ TEST_F(MapFileTest, AKeypointOutsideTheImageIsOneClearError) {
   const std::string error = load_error();
   EXPECT_EQ(error.rfind(path_ + ": corrupt map (keyframe ", 0), 0u) << error;
   EXPECT_NE(error.find(": keypoint 0 far outside the image)"), std::string::npos) << error;
+}
+
+TEST_F(MapFileTest, TheLensIsPartOfTheCameraAndVersionOneFilesStillLoad) {
+  auto expect = [](const std::string& error, const std::string& needle) {
+    EXPECT_NE(error.find(needle), std::string::npos) << error;
+  };
+  // A version 1 file: the same map without the five distortion values.
+  std::string v1 = bytes();
+  v1.erase(kHeaderBytes - 8 - 40, 40);
+  v1[8] = 1;
+  uint32_t crc = crc32_of(v1, v1.size() - 4);
+  std::memcpy(&v1[v1.size() - 4], &crc, 4);
+  write(v1);
+  EXPECT_EQ(load_error(), "");
+  // A lens makes another camera, in either direction.
+  PinholeCamera lensed = camera_;
+  lensed.lens.k1 = -0.25;
+  lensed.lens.k2 = 0.08;
+  set_undistorted_bounds(lensed, "test");
+  expect(load_error(kVocabulary, &lensed), "another camera");
+  save_map_file(scene_.map, lensed, levels(), kVocabulary, path_);
+  expect(load_error(), "k1 -0.25 k2 0.08 p1 0 p2 0 k3 0; this dataset's is");
+  Map loaded;
+  const MapFileInfo info = load_map_file(path_, lensed, levels(), kVocabulary, loaded);
+  EXPECT_EQ(info.camera.lens.k1, -0.25);
+  EXPECT_EQ(info.camera.lens.k2, 0.08);
+  EXPECT_EQ(info.keyframes, scene_.map.n_keyframes());
 }
 
 TEST_F(MapFileTest, LoadsOnlyIntoAnEmptyMap) {

@@ -1,5 +1,7 @@
 #include "slam/io/settings.h"
 
+#include "slam/camera/lens_distortion.h"
+
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -45,6 +47,14 @@ SlamSettings load_settings(const std::string& path, const SlamSettings& defaults
   s.camera.fy = read<double>(cam, "fy", s.camera.fy, path, 1, 1e5);
   s.camera.cx = read<double>(cam, "cx", s.camera.cx, path, 0, 8192);
   s.camera.cy = read<double>(cam, "cy", s.camera.cy, path, 0, 8192);
+  // Lens distortion (OpenCV's k1 k2 p1 p2 k3); a file without them keeps
+  // the defaults' (a later file describes the same camera).
+  s.camera.lens.k1 = read<double>(cam, "k1", s.camera.lens.k1, path, -10, 10);
+  s.camera.lens.k2 = read<double>(cam, "k2", s.camera.lens.k2, path, -10, 10);
+  s.camera.lens.p1 = read<double>(cam, "p1", s.camera.lens.p1, path, -1, 1);
+  s.camera.lens.p2 = read<double>(cam, "p2", s.camera.lens.p2, path, -1, 1);
+  s.camera.lens.k3 = read<double>(cam, "k3", s.camera.lens.k3, path, -10, 10);
+  set_undistorted_bounds(s.camera, path);
   // Virtual stereo baseline (ORB-SLAM2's Camera.bf); default 0.08 m x fx.
   const double baseline =
       read<double>(cam, "baseline", s.camera.bf / s.camera.fx, path, 0.001, 1.0);

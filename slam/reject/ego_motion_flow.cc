@@ -5,6 +5,8 @@
 
 #include <opencv2/calib3d.hpp>
 
+#include "slam/camera/lens_distortion.h"
+
 namespace depot::slam {
 
 EgoMotionModel fit_ego_motion(const PinholeCamera& camera, const std::vector<cv::Point2f>& pixels,
@@ -15,7 +17,8 @@ EgoMotionModel fit_ego_motion(const PinholeCamera& camera, const std::vector<cv:
   std::vector<cv::Point2f> image;
   for (size_t i = 0; i < pixels.size(); ++i) {
     if (!ok[i] || !(depth[i] > 0)) continue;
-    const Eigen::Vector3d p = camera.unproject(pixels[i].x, pixels[i].y, depth[i]);
+    const cv::Point2f ray = undistort_pixel(camera, pixels[i]);
+    const Eigen::Vector3d p = camera.unproject(ray.x, ray.y, depth[i]);
     object.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()),
                         static_cast<float>(p.z()));
     image.push_back(pixels[i] - flow[i]);
@@ -23,10 +26,13 @@ EgoMotionModel fit_ego_motion(const PinholeCamera& camera, const std::vector<cv:
   model.points = static_cast<int>(object.size());
   if (model.points < params.min_points) return model;
   const cv::Matx33d k(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
+  // The flow lives in the image, so the fit projects through the lens.
+  const cv::Vec<double, 5> lens(camera.lens.k1, camera.lens.k2, camera.lens.p1, camera.lens.p2,
+                                camera.lens.k3);
   // Consecutive frames: start from "no motion" and refine.
   cv::Mat rvec = cv::Mat::zeros(3, 1, CV_64F), tvec = cv::Mat::zeros(3, 1, CV_64F);
   std::vector<int> inliers;
-  const bool found = cv::solvePnPRansac(object, image, k, cv::noArray(), rvec, tvec, true, 100,
+  const bool found = cv::solvePnPRansac(object, image, k, lens, rvec, tvec, true, 100,
                                         scaled_px(params.ransac_px, camera), 0.99, inliers,
                                         cv::SOLVEPNP_ITERATIVE);
   model.inliers = static_cast<int>(inliers.size());
@@ -37,7 +43,7 @@ EgoMotionModel fit_ego_motion(const PinholeCamera& camera, const std::vector<cv:
     in_object.push_back(object[i]);
     in_image.push_back(image[i]);
   }
-  cv::solvePnPRefineLM(in_object, in_image, k, cv::noArray(), rvec, tvec);
+  cv::solvePnPRefineLM(in_object, in_image, k, lens, rvec, tvec);
   cv::Mat r;
   cv::Rodrigues(rvec, r);
   model.rotation = cv::Matx33d(r);
@@ -52,12 +58,16 @@ namespace {
 // away (infinite depth: rotation only). False when behind the camera.
 bool predict_previous(const EgoMotionModel& model, const PinholeCamera& camera,
                       const cv::Point2f& pixel, double depth, cv::Point2d* predicted) {
-  const Eigen::Vector3d ray = camera.unproject(pixel.x, pixel.y, 1.0);
+  const cv::Point2f undistorted = undistort_pixel(camera, pixel);
+  const Eigen::Vector3d ray = camera.unproject(undistorted.x, undistorted.y, 1.0);
   const cv::Vec3d dir(ray.x(), ray.y(), ray.z());
   const cv::Vec3d q = std::isfinite(depth) ? model.rotation * (dir * depth) + model.translation
                                            : model.rotation * dir;
   if (q[2] <= 1e-9) return false;
-  *predicted = {camera.fx * q[0] / q[2] + camera.cx, camera.fy * q[1] / q[2] + camera.cy};
+  const cv::Point2f image =
+      distort_pixel(camera, cv::Point2f(static_cast<float>(camera.fx * q[0] / q[2] + camera.cx),
+                                        static_cast<float>(camera.fy * q[1] / q[2] + camera.cy)));
+  *predicted = {image.x, image.y};
   return true;
 }
 

@@ -166,10 +166,11 @@ void add_run_options(CLI::App* cmd, SweepArgs& a) {
       ->default_str("");
   cmd->add_option("-o,--output", a.output, "Sweep folder (resumes when it holds this sweep)")
       ->required();
-  cmd->add_option("--vary", a.vary,
-                  "PARAM=L1,L2,...: load, depth_noise, rgb_noise, exposure, readout, miss_rate, "
-                  "latency, scenario.KEY, detector.KEY, rejection.KEY (repeatable: the grid is "
-                  "the product)")
+  cmd->add_option(
+         "--vary", a.vary,
+         "PARAM=L1,L2,...: load, depth_noise, rgb_noise, exposure, readout, distortion (k1), "
+         "miss_rate, latency, scenario.KEY, detector.KEY, rejection.KEY (repeatable: the grid is "
+         "the product)")
       ->default_str("");
   cmd->add_option("--set", a.fixed, "PARAM=VALUE for every run (same names as --vary)")
       ->default_str("");

@@ -23,6 +23,7 @@
 #include "eval/instance_classes.h"
 #include "eval/matched_trajectories.h"
 #include "eval/motion_truth.h"
+#include "slam/camera/lens_distortion.h"
 #include "slam/dense/dense_cloud.h"
 #include "slam/io/ply_file.h"
 #include "slam/io/settings.h"
@@ -225,8 +226,10 @@ CloudScore score_static_cloud(const CloudScoreOptions& o) {
       const Eigen::Vector3d p = T_cw * world[i];
       if (p.z() <= 0.05) continue;
       const Eigen::Vector2d uv = camera.project(p);
-      const int u = static_cast<int>(std::lround(uv.x())),
-                v = static_cast<int>(std::lround(uv.y()));
+      const cv::Point2f pixel = slam::distort_pixel(
+          camera, cv::Point2f(static_cast<float>(uv.x()), static_cast<float>(uv.y())));
+      const int u = static_cast<int>(std::lround(pixel.x)),
+                v = static_cast<int>(std::lround(pixel.y));
       if (u < 0 || v < 0 || u >= moving.cols || v >= moving.rows || !moving.at<uint8_t>(v, u))
         continue;
       const float z = depth.at<float>(v, u);

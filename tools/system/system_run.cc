@@ -50,8 +50,11 @@ std::string orbslam_settings(const slam::SlamSettings& s, double fps) {
   line("Camera.fy", format_double(c.fy));
   line("Camera.cx", format_double(c.cx));
   line("Camera.cy", format_double(c.cy));
-  for (const char* k : {"Camera.k1", "Camera.k2", "Camera.p1", "Camera.p2", "Camera.k3"})
-    line(k, "0.0");
+  line("Camera.k1", format_double(c.lens.k1));
+  line("Camera.k2", format_double(c.lens.k2));
+  line("Camera.p1", format_double(c.lens.p1));
+  line("Camera.p2", format_double(c.lens.p2));
+  line("Camera.k3", format_double(c.lens.k3));
   line("Camera.width", std::to_string(c.width));
   line("Camera.height", std::to_string(c.height));
   line("Camera.fps", format_double(fps));
