@@ -11,9 +11,21 @@ class Error : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Throws Error("<where>: <what>").
+// Throws Error("<where>: <what>"), kept to one line: line breaks quoted
+// from a user's file (a value, a key) are written as \n and \r.
 [[noreturn]] inline void fail(const std::string& where, const std::string& what) {
-  throw Error(where.empty() ? what : where + ": " + what);
+  const std::string text = where.empty() ? what : where + ": " + what;
+  std::string line;
+  line.reserve(text.size());
+  for (const char c : text) {
+    if (c == '\n')
+      line += "\\n";
+    else if (c == '\r')
+      line += "\\r";
+    else
+      line += c;
+  }
+  throw Error(line);
 }
 
 }  // namespace depot

@@ -36,6 +36,17 @@ TEST(ScenarioBadInput, AFileThatIsNotAPathIsOneError) {
   std::filesystem::remove(path);
 }
 
+// A plain scalar that runs over several lines inside a flow map keeps its
+// line breaks; the error quoting it stays one line (fuzz_scenario, stop 35).
+TEST(ScenarioBadInput, AValueQuotedWithItsLineBreaksIsStillOneLine) {
+  const std::string path =
+      write_scenario("multiline.yaml", "name: x\nmotion: {type: w\n\n\n\ne}\n");
+  const std::string error = error_of([&] { load_scenario(path); });
+  EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+  EXPECT_NE(error.find("unknown camera motion 'w\\n"), std::string::npos) << error;
+  std::filesystem::remove(path);
+}
+
 TEST(ScenarioBadInput, ShutterTimesOutOfRangeAreOneError) {
   const std::string negative = write_scenario(
       "exposure.yaml", "name: x\nmotion: {type: static}\nsensor: {exposure: -0.01}\n");
