@@ -6,6 +6,9 @@
 //   r2 = x^2 + y^2, radial = 1 + k1 r2 + k2 r2^2 + k3 r2^3
 //   xd = x radial + 2 p1 x y + p2 (r2 + 2 x^2)
 //   yd = y radial + p1 (r2 + 2 y^2) + 2 p2 x y
+#include <cstdio>
+#include <string>
+
 #include <Eigen/Core>
 
 namespace depot {
@@ -14,6 +17,17 @@ struct LensCoefficients {
   double k1 = 0, k2 = 0, p1 = 0, p2 = 0, k3 = 0;
   bool any() const { return k1 != 0 || k2 != 0 || p1 != 0 || p2 != 0 || k3 != 0; }
 };
+
+// "k1 -0.25, k2 0.08, p1 0, p2 0, k3 0", as errors name a lens.
+inline std::string describe_lens(const LensCoefficients& l) {
+  auto number = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%g", v);
+    return std::string(text);
+  };
+  return "k1 " + number(l.k1) + ", k2 " + number(l.k2) + ", p1 " + number(l.p1) + ", p2 " +
+         number(l.p2) + ", k3 " + number(l.k3);
+}
 
 // The distorted normalised coordinates of the ray (x, y, 1).
 inline Eigen::Vector2d distort_normalised(const LensCoefficients& l, const Eigen::Vector2d& xy) {

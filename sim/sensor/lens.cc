@@ -65,8 +65,7 @@ LensMapping make_lens_mapping(const CameraIntrinsics& camera, const LensDistorti
       const Eigen::Vector2d d((u - camera.cx) / fx, (v - camera.cy) / fy);
       Eigen::Vector2d& xy = rays[static_cast<size_t>(v) * w + u];
       if (!undistort_normalised(lens, d, xy))
-        fail(where, "the lens distortion (k1 " + std::to_string(lens.k1) + ", k2 " +
-                        std::to_string(lens.k2) + ", k3 " + std::to_string(lens.k3) +
+        fail(where, "the lens distortion (" + describe_lens(lens) +
                         ") folds the image: no single ray reaches pixel (" + std::to_string(u) +
                         ", " + std::to_string(v) + ")");
       max_r = std::max(max_r, xy.norm());
@@ -82,8 +81,7 @@ LensMapping make_lens_mapping(const CameraIntrinsics& camera, const LensDistorti
     for (int a = 0; a < 360; ++a) {
       const double r = max_r * i / 200.0, t = a * M_PI / 180.0;
       if (!(distortion_jacobian_det(lens, {r * std::cos(t), r * std::sin(t)}) > 0))
-        fail(where, "the lens distortion (k1 " + std::to_string(lens.k1) + ", k2 " +
-                        std::to_string(lens.k2) + ", k3 " + std::to_string(lens.k3) +
+        fail(where, "the lens distortion (" + describe_lens(lens) +
                         ") folds the image: the mapping turns back " + std::to_string(r) +
                         " focal lengths from the centre, inside the frame");
     }

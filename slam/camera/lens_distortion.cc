@@ -44,9 +44,8 @@ cv::Point2f distort_pixel(const PinholeCamera& camera, const cv::Point2f& undist
   const double x = (undistorted.x - camera.cx) / camera.fx;
   const double y = (undistorted.y - camera.cy) / camera.fy;
   const Eigen::Vector2d d = distort_normalised(camera.lens, {x, y});
-  const double xd = d.x(), yd = d.y();
-  return {static_cast<float>(camera.fx * xd + camera.cx),
-          static_cast<float>(camera.fy * yd + camera.cy)};
+  return {static_cast<float>(camera.fx * d.x() + camera.cx),
+          static_cast<float>(camera.fy * d.y() + camera.cy)};
 }
 
 void set_undistorted_bounds(PinholeCamera& camera, const std::string& where) {
@@ -65,8 +64,7 @@ void set_undistorted_bounds(PinholeCamera& camera, const std::string& where) {
     const cv::Point2f& p = undistorted[i];
     const cv::Point2f back = distort_pixel(camera, p);
     if (!(std::hypot(back.x - border[i].x, back.y - border[i].y) < 0.01))
-      fail(where, "the lens distortion (k1 " + std::to_string(camera.lens.k1) + ", k2 " +
-                      std::to_string(camera.lens.k2) + ", k3 " + std::to_string(camera.lens.k3) +
+      fail(where, "the lens distortion (" + describe_lens(camera.lens) +
                       ") does not invert at image pixel (" + std::to_string(border[i].x) + ", " +
                       std::to_string(border[i].y) + "): it folds the image");
     camera.min_u = std::min<double>(camera.min_u, p.x);

@@ -1,7 +1,5 @@
 #include "slam/dense/dense_cloud.h"
 
-#include "slam/camera/lens_distortion.h"
-
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -9,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/error.h"
+#include "slam/camera/lens_distortion.h"
 
 namespace depot::slam {
 namespace {
@@ -88,12 +87,10 @@ void DenseCloud::add_view(const Pose& T_wc, const cv::Mat& depth, const cv::Mat&
       const float z = z_row[u];
       if (!(z > 0 && z <= params_.max_depth_m)) continue;
       if (out_row && out_row[u]) continue;
-      Eigen::Vector3d ray = camera_.unproject(u, v, z);
-      if (!undistorted_.empty()) {
-        const cv::Point2f& q = undistorted_[static_cast<size_t>(v) * camera_.width + u];
-        ray = camera_.unproject(q.x, q.y, z);
-      }
-      const Eigen::Vector3d p = R * ray + t;
+      const cv::Point2f q = undistorted_.empty()
+                                ? cv::Point2f(static_cast<float>(u), static_cast<float>(v))
+                                : undistorted_[static_cast<size_t>(v) * camera_.width + u];
+      const Eigen::Vector3d p = R * camera_.unproject(q.x, q.y, z) + t;
       Voxel& cell = voxels_[voxel_key(p, voxel)];
       cell.sum += p;
       const cv::Vec3b& c = colour_row[u];

@@ -1,7 +1,5 @@
 #include "slam/io/map_file.h"
 
-#include "slam/camera/lens_distortion.h"
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +11,7 @@
 #include "common/error.h"
 #include "common/image_size.h"
 #include "common/staged_file.h"
+#include "slam/camera/lens_distortion.h"
 #include "slam/data/map_point.h"
 #include "slam/place/vocabulary_file.h"
 
@@ -60,8 +59,7 @@ std::string describe(const PinholeCamera& c) {
   s << c.width << "x" << c.height << " fx " << c.fx << " fy " << c.fy << " cx " << c.cx << " cy "
     << c.cy;
   if (c.distorted())
-    s << " k1 " << c.lens.k1 << " k2 " << c.lens.k2 << " p1 " << c.lens.p1 << " p2 " << c.lens.p2
-      << " k3 " << c.lens.k3;
+    s << " " << describe_lens(c.lens);
   else
     s << " no distortion";
   return s.str();

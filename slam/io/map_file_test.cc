@@ -215,7 +215,7 @@ TEST_F(MapFileTest, TheLensIsPartOfTheCameraAndVersionOneFilesStillLoad) {
   set_undistorted_bounds(lensed, "test");
   expect(load_error(kVocabulary, &lensed), "another camera");
   save_map_file(scene_.map, lensed, levels(), kVocabulary, path_);
-  expect(load_error(), "k1 -0.25 k2 0.08 p1 0 p2 0 k3 0; this dataset's is");
+  expect(load_error(), "k1 -0.25, k2 0.08, p1 0, p2 0, k3 0; this dataset's is");
   Map loaded;
   const MapFileInfo info = load_map_file(path_, lensed, levels(), kVocabulary, loaded);
   EXPECT_EQ(info.camera.lens.k1, -0.25);

@@ -1,7 +1,5 @@
 #include "slam/io/settings.h"
 
-#include "slam/camera/lens_distortion.h"
-
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -11,6 +9,7 @@
 #include "common/error.h"
 #include "common/image_size.h"
 #include "common/yaml_file.h"
+#include "slam/camera/lens_distortion.h"
 
 namespace depot::slam {
 namespace {

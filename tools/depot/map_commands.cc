@@ -34,16 +34,13 @@ void info(const std::string& path) {
   size_t observations = 0;
   for (const slam::MapPoint* mp : m->map.map_points()) observations += mp->observations.size();
   const slam::PinholeCamera& c = i.camera;
-  char lens[160] = "";
-  if (c.distorted())
-    std::snprintf(lens, sizeof(lens), " k1 %.6g k2 %.6g p1 %.6g p2 %.6g k3 %.6g", c.lens.k1,
-                  c.lens.k2, c.lens.p1, c.lens.p2, c.lens.k3);
+  const std::string lens = c.distorted() ? " lens " + describe_lens(c.lens) : "";
   std::printf(
       "%s: map format %u, %zu keyframes, %zu map points (%.1f observations each), camera %dx%d "
       "fx %.1f fy %.1f cx %.1f cy %.1f%s, ORB pyramid %d levels x %.2f, vocabulary identity %08x\n",
       path.c_str(), i.version, i.keyframes, i.points,
       i.points ? static_cast<double>(observations) / i.points : 0.0, c.width, c.height, c.fx, c.fy,
-      c.cx, c.cy, lens, i.levels, i.scale_factor, i.vocabulary);
+      c.cx, c.cy, lens.c_str(), i.levels, i.scale_factor, i.vocabulary);
 }
 
 void export_points(const std::string& path, const std::string& output) {
