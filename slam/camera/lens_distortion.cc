@@ -10,14 +10,6 @@
 namespace depot::slam {
 namespace {
 
-cv::Matx33d camera_matrix(const PinholeCamera& c) {
-  return {c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1};
-}
-
-cv::Vec<double, 5> distortion(const PinholeCamera& c) {
-  return {c.lens.k1, c.lens.k2, c.lens.p1, c.lens.p2, c.lens.k3};
-}
-
 // OpenCV's fixed-point inversion, run until it moves less than 1e-9 of a
 // focal length (its default of 5 steps leaves tenths of a pixel in the
 // corners of a Kinect lens).
@@ -25,12 +17,20 @@ const cv::TermCriteria kUndistortUntil(cv::TermCriteria::COUNT + cv::TermCriteri
 
 }  // namespace
 
+cv::Matx33d opencv_camera_matrix(const PinholeCamera& c) {
+  return {c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1};
+}
+
+cv::Vec<double, 5> opencv_distortion(const PinholeCamera& c) {
+  return {c.lens.k1, c.lens.k2, c.lens.p1, c.lens.p2, c.lens.k3};
+}
+
 std::vector<cv::Point2f> undistort_pixels(const PinholeCamera& camera,
                                           const std::vector<cv::Point2f>& pixels) {
   if (!camera.distorted() || pixels.empty()) return pixels;
   std::vector<cv::Point2f> out;
-  const cv::Matx33d k = camera_matrix(camera);
-  cv::undistortPoints(pixels, out, k, distortion(camera), cv::noArray(), k, kUndistortUntil);
+  const cv::Matx33d k = opencv_camera_matrix(camera);
+  cv::undistortPoints(pixels, out, k, opencv_distortion(camera), cv::noArray(), k, kUndistortUntil);
   return out;
 }
 

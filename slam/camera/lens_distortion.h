@@ -11,6 +11,10 @@
 
 namespace depot::slam {
 
+// The camera in OpenCV's terms (calib3d's K and distortion coefficients).
+cv::Matx33d opencv_camera_matrix(const PinholeCamera& camera);
+cv::Vec<double, 5> opencv_distortion(const PinholeCamera& camera);
+
 // Undistorted positions of image pixels.
 std::vector<cv::Point2f> undistort_pixels(const PinholeCamera& camera,
                                           const std::vector<cv::Point2f>& pixels);

@@ -25,10 +25,9 @@ EgoMotionModel fit_ego_motion(const PinholeCamera& camera, const std::vector<cv:
   }
   model.points = static_cast<int>(object.size());
   if (model.points < params.min_points) return model;
-  const cv::Matx33d k(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
+  const cv::Matx33d k = opencv_camera_matrix(camera);
   // The flow lives in the image, so the fit projects through the lens.
-  const cv::Vec<double, 5> lens(camera.lens.k1, camera.lens.k2, camera.lens.p1, camera.lens.p2,
-                                camera.lens.k3);
+  const cv::Vec<double, 5> lens = opencv_distortion(camera);
   // Consecutive frames: start from "no motion" and refine.
   cv::Mat rvec = cv::Mat::zeros(3, 1, CV_64F), tvec = cv::Mat::zeros(3, 1, CV_64F);
   std::vector<int> inliers;
@@ -54,12 +53,11 @@ EgoMotionModel fit_ego_motion(const PinholeCamera& camera, const std::vector<cv:
 
 namespace {
 
-// Where the camera motion puts a static point seen at `pixel`, `depth` m
-// away (infinite depth: rotation only). False when behind the camera.
+// Where the camera motion puts a static point on `ray` (z = 1), `depth` m
+// away (infinite depth: rotation only), in the image. False when behind
+// the camera.
 bool predict_previous(const EgoMotionModel& model, const PinholeCamera& camera,
-                      const cv::Point2f& pixel, double depth, cv::Point2d* predicted) {
-  const cv::Point2f undistorted = undistort_pixel(camera, pixel);
-  const Eigen::Vector3d ray = camera.unproject(undistorted.x, undistorted.y, 1.0);
+                      const Eigen::Vector3d& ray, double depth, cv::Point2d* predicted) {
   const cv::Vec3d dir(ray.x(), ray.y(), ray.z());
   const cv::Vec3d q = std::isfinite(depth) ? model.rotation * (dir * depth) + model.translation
                                            : model.rotation * dir;
@@ -85,12 +83,14 @@ bool predict_static_previous(const EgoMotionModel& model, const PinholeCamera& c
                              const cv::Point2f& pixel, float depth, float no_depth_min,
                              cv::Point2f* near, cv::Point2f* far) {
   if (!model.valid) return false;
+  const cv::Point2f undistorted = undistort_pixel(camera, pixel);
+  const Eigen::Vector3d ray = camera.unproject(undistorted.x, undistorted.y, 1.0);
   cv::Point2d a, b;
   if (depth > 0) {
-    if (!predict_previous(model, camera, pixel, depth, &a)) return false;
+    if (!predict_previous(model, camera, ray, depth, &a)) return false;
     b = a;
-  } else if (!predict_previous(model, camera, pixel, no_depth_min, &a) ||
-             !predict_previous(model, camera, pixel, INFINITY, &b)) {
+  } else if (!predict_previous(model, camera, ray, no_depth_min, &a) ||
+             !predict_previous(model, camera, ray, INFINITY, &b)) {
     return false;
   }
   *near = cv::Point2f(static_cast<float>(a.x), static_cast<float>(a.y));
