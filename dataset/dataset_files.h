@@ -11,6 +11,7 @@ inline constexpr const char* kLabelFolder = "labels";
 inline constexpr const char* kObjectsFile = "objects.json";
 inline constexpr const char* kObjectPosesFile = "object_poses.txt";
 inline constexpr const char* kBoxesFile = "boxes.txt";
+inline constexpr const char* kExposuresFile = "exposures.txt";
 
 // `dataset_dir`/`name`.
 std::string dataset_file(const std::string& dataset_dir, const std::string& name);

@@ -15,6 +15,7 @@
 #include "dataset/label_images.h"
 #include "sim/dataset/boxes.h"
 #include "sim/dataset/truth_files.h"
+#include "sim/sensor/colour_pipeline.h"
 #include "sim/sensor/depth_artefacts.h"
 #include "sim/sensor/kinect_model.h"
 
@@ -89,6 +90,11 @@ void DatasetWriter::add(RenderedFrame frame, const FrameTruth& truth) {
   for (const ObjectState& s : truth.objects) moving[s.id] = s.moving;
   for (dataset::ObjectPoseRecord& r : object_pose_records(truth))
     object_poses_.push_back(std::move(r));
+  if (scenario_.sensor.forms_colour()) {
+    const std::vector<float>& rows = truth.capture.row_light;
+    exposures_.push_back({truth.rgb_timestamp, truth.capture.exposure, truth.capture.gain,
+                          rows.empty() ? 1.0 : rows[rows.size() / 2]});
+  }
   // Boxes are cheap: compute them here, in frame order.
   std::string yolo;
   for (const InstanceBox& b : instance_boxes(frame.instance, options_.min_box_pixels)) {
@@ -108,7 +114,7 @@ void DatasetWriter::add(RenderedFrame frame, const FrameTruth& truth) {
       covered_frames_.emplace_back(truth.index, truth.index);
   }
 
-  Job job{std::move(frame), truth.rgb_timestamp, rs, ds, truth.index, truth.covered};
+  Job job{std::move(frame), truth.rgb_timestamp, rs, ds, truth.index, truth.covered, truth.capture};
   std::unique_lock<std::mutex> lock(mutex_);
   cv_.wait(lock, [&] { return queue_.size() < kMaxQueued || error_; });
   if (error_) std::rethrow_exception(error_);
@@ -154,7 +160,7 @@ void DatasetWriter::write_job(Job& job, WriterTimings& timings) {
     apply_depth_artefacts(job.frame.depth, job.frame.bgr, sensor, seed);
     depth = misregister_depth(apply_depth_model(job.frame.depth, sensor, scenario_.camera.f, seed),
                               sensor);
-    apply_rgb_noise(job.frame.bgr, sensor.rgb_noise, derive_seed(seed, 1));
+    apply_colour_sensor(job.frame.bgr, sensor, job.capture, derive_seed(seed, 1));
   }
   cv::Mat depth16 = depth_to_u16(depth, scenario_.camera.depth_factor);
   auto t1 = std::chrono::steady_clock::now();
@@ -182,6 +188,7 @@ void DatasetWriter::write_text_files() {
   write("groundtruth.txt", gt_txt_);
   dataset::write_label_list(root.string(), scenario_.name, label_timestamps_);
   dataset::write_object_poses(root.string(), scenario_.name, object_poses_);
+  if (!exposures_.empty()) dataset::write_exposures(root.string(), scenario_.name, exposures_);
   dataset::write_boxes(root.string(), scenario_.name, boxes_);
   std::string classes_txt;
   for (const auto& n : classes_.yolo_names()) classes_txt += n + "\n";
@@ -229,6 +236,31 @@ void DatasetWriter::write_text_files() {
           << s.misregistration.x() << ", " << s.misregistration.y()
           << "]  # px, depth against colour\n  depth_offset: " << s.depth_offset
           << "  # s, depth stamp minus colour stamp; depth rendered at its own stamp\n";
+    calibration += block.str();
+  }
+  if (s.forms_colour()) {
+    // Sim/sensor/colour_pipeline.h; per frame: exposures.txt.
+    const LightSpec& l = s.light;
+    const ExposureControlSpec& e = s.exposure_control;
+    const ColourPipelineSpec& c = s.colour;
+    std::ostringstream block;
+    block << "# Colour image formation as simulated (the render is the output at the reference\n"
+          << "# exposure under light 1, sRGB-encoded; per-frame exposure, gain, light in\n"
+          << "# exposures.txt):\ncolour:\n  light: " << l.level << "\n  light_events: [";
+    for (size_t i = 0; i < l.events.size(); ++i)
+      block << (i ? ", " : "") << "[" << l.events[i].x() << ", " << l.events[i].y() << "]";
+    block << "]  # [s since the first frame, level]\n  flicker: " << l.flicker
+          << "\n  mains: " << l.mains_hz
+          << "  # Hz\n  auto_exposure: " << (e.automatic ? "true" : "false")
+          << "\n  reference_exposure: " << s.exposure << "  # s\n  ae_target: " << e.target
+          << "\n  ae_time_constant: " << e.time_constant
+          << "  # s\n  max_exposure: " << e.max_exposure << "  # s\n  max_gain: " << e.max_gain
+          << "\n  vignetting: " << c.vignetting << "  # relative illumination at the corners\n"
+          << "  lens_blur: " << c.lens_blur
+          << "  # px, Gaussian PSF sigma\n  demosaic: " << c.demosaic << "\n  bayer: " << c.bayer
+          << "  # the mosaic's top-left 2x2\n  full_well: " << c.full_well
+          << "  # e-, at gain 1 (0: additive rgb_noise)\n  read_noise: " << c.read_noise
+          << "  # e-\n  jpeg_quality: " << c.jpeg_quality << "\n";
     calibration += block.str();
   }
   write("calibration.yaml", calibration);

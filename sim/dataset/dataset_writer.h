@@ -17,6 +17,7 @@
 
 #include "common/staged_directory.h"
 #include "dataset/boxes.h"
+#include "dataset/exposures.h"
 #include "dataset/object_poses.h"
 #include "sim/render/rendered_frame.h"
 #include "sim/scenario/class_table.h"
@@ -65,6 +66,7 @@ class DatasetWriter {
     std::string stamp_rgb, stamp_depth;
     int index = 0;
     bool covered = false;  // a covered camera's frame gets no sensor noise
+    ColourCapture capture;
   };
   void worker();
   void write_job(Job& job, WriterTimings& timings);
@@ -89,6 +91,7 @@ class DatasetWriter {
   // The truth files' records, written by the dataset library at the end.
   std::vector<double> label_timestamps_;
   std::vector<dataset::ObjectPoseRecord> object_poses_;
+  std::vector<dataset::ExposureRecord> exposures_;  // where the sensor forms its colour
   std::vector<dataset::BoxRecord> boxes_;
   std::vector<std::pair<std::string, std::string>> yolo_files_;  // stamp -> content
   int frames_ = 0;

@@ -66,6 +66,51 @@ struct TimestampSpec {
 // sim/sensor/lens.h), all zero = a pinhole.
 using LensDistortion = LensCoefficients;
 
+// The scene's light level over time (sim/sensor/light.h).
+struct LightSpec {
+  double level = 1.0;  // 1 = the scene as lit in its layout
+  // [time s since the first frame, level] points, times ascending: the level
+  // follows them linearly, held before the first and after the last (two
+  // points at one time switch). Multiplies `level`. Empty = constant.
+  std::vector<Eigen::Vector2d> events;
+  // Mains flicker: the light swings by +-flicker around its level at twice
+  // the mains frequency (a lamp on 50 Hz flickers at 100 Hz).
+  double flicker = 0.0;
+  double mains_hz = 50.0;
+
+  bool constant() const { return level == 1.0 && events.empty() && flicker == 0.0; }
+};
+
+// Exposure time and gain under auto-exposure (sim/sensor/auto_exposure.h).
+struct ExposureControlSpec {
+  bool automatic = false;
+  double target = 0.45;         // metered mean output brightness, 0..1 of full scale
+  double time_constant = 0.25;  // s, of the loop's first-order response
+  double max_exposure = 0.03;   // s, longest exposure before gain is raised
+  double min_exposure = 1e-4;   // s
+  double max_gain = 8.0;        // analogue gain at most
+};
+
+// Optics and the colour sensor's pipeline (sim/sensor/colour_pipeline.h).
+struct ColourPipelineSpec {
+  double vignetting = 1.0;  // relative illumination at the image's corners (1 = none)
+  double lens_blur = 0.0;   // px, sigma of the lens's Gaussian point-spread function
+  // Bayer mosaic and the driver's demosaicing: none, bilinear or edge_aware
+  // (OpenCV's); `bayer` names the mosaic's top-left 2x2, row by row.
+  std::string demosaic = "none";
+  std::string bayer = "rggb";  // rggb, grbg, gbrg or bggr
+  // Shot and read noise in electrons (full well at gain 1); 0 = the
+  // additive `rgb_noise` sigma instead.
+  double full_well = 0.0;
+  double read_noise = 0.0;
+  int jpeg_quality = 0;  // 0 = none, else as the driver's JPEG (1..100)
+
+  bool any() const {
+    return vignetting != 1.0 || lens_blur > 0 || demosaic != "none" || full_well > 0 ||
+           jpeg_quality > 0;
+  }
+};
+
 struct SensorSpec {
   bool ideal = false;
   double min_depth = 0.4;
@@ -89,6 +134,19 @@ struct SensorSpec {
   // The colour camera's lens distortion; depth is registered to the colour
   // camera, so it and the labels share it.
   LensDistortion lens;
+  // Light, exposure control and the colour pipeline: all off by default, and
+  // then the colour image is the render plus `rgb_noise` as before.
+  LightSpec light;
+  ExposureControlSpec exposure_control;
+  ColourPipelineSpec colour;
+
+  bool forms_colour() const {
+    return !ideal && (!light.constant() || exposure_control.automatic || colour.any());
+  }
+  // The longest exposure a frame can have (the shutter's span).
+  double longest_exposure() const {
+    return exposure_control.automatic ? exposure_control.max_exposure : exposure;
+  }
 };
 
 struct ActorSpec {

@@ -221,10 +221,128 @@ void read_timestamps(const Fields& f, TimestampSpec& t) {
          "times are a real driver's already)");
 }
 
+// `light_events: [[t, level], ...]`, times ascending.
+std::vector<Eigen::Vector2d> read_light_events(const Fields& f) {
+  const YAML::Node n = f.node("light_events");
+  if (!n.IsSequence()) fail(f.where(n), "'light_events' must be a list of [time, level]");
+  std::vector<Eigen::Vector2d> events;
+  for (const auto& e : n) {
+    std::vector<double> v;
+    try {
+      v = e.as<std::vector<double>>();
+    } catch (const YAML::Exception&) {
+    }
+    if (v.size() != 2 || !std::isfinite(v[0]) || !std::isfinite(v[1]))
+      fail(f.where(e), "a light event must be [time, level]");
+    if (v[1] < 0 || v[1] > 10) fail(f.where(e), "a light level must be within [0, 10]");
+    if (!events.empty() && v[0] < events.back().x())
+      fail(f.where(e), "light_events must be in time order");
+    events.emplace_back(v[0], v[1]);
+  }
+  return events;
+}
+
+void read_light_and_colour(const Fields& f, SensorSpec& s) {
+  LightSpec& l = s.light;
+  l.level = f.number("light", l.level, 0.0, 10.0);
+  if (f.has("light_events")) l.events = read_light_events(f);
+  l.flicker = f.number("flicker", l.flicker, 0.0, 1.0);
+  l.mains_hz = f.number("mains", l.mains_hz, 1.0, 1000.0);
+  ExposureControlSpec& e = s.exposure_control;
+  e.automatic = f.get<bool>("auto_exposure", e.automatic);
+  e.target = f.number("ae_target", e.target, 0.05, 0.95);
+  e.time_constant = f.number("ae_time_constant", e.time_constant, 0.001, 10.0);
+  e.max_exposure = f.number("max_exposure", e.max_exposure, 1e-4, 0.5);
+  e.max_gain = f.number("max_gain", e.max_gain, 1.0, 64.0);
+  ColourPipelineSpec& c = s.colour;
+  c.vignetting = f.number("vignetting", c.vignetting, 0.05, 1.0);
+  c.lens_blur = f.number("lens_blur", c.lens_blur, 0.0, 10.0);
+  c.demosaic = f.str("demosaic", c.demosaic);
+  if (c.demosaic != "none" && c.demosaic != "bilinear" && c.demosaic != "edge_aware")
+    fail(f.where(f.node("demosaic")), "unknown demosaic '" + printable(c.demosaic) +
+                                          "' (expected none, bilinear or edge_aware)");
+  c.bayer = f.str("bayer", c.bayer);
+  if (c.bayer != "rggb" && c.bayer != "grbg" && c.bayer != "gbrg" && c.bayer != "bggr")
+    fail(f.where(f.node("bayer")),
+         "unknown bayer pattern '" + printable(c.bayer) + "' (expected rggb, grbg, gbrg or bggr)");
+  c.full_well = f.number("full_well", c.full_well, 0.0, 1e6);
+  if (c.full_well > 0 && c.full_well < 100)
+    fail(f.where(f.node("full_well")),
+         "'full_well' must be 0 (no sensor noise model) or at least "
+         "100 electrons");
+  c.read_noise = f.number("read_noise", c.read_noise, 0.0, 1000.0);
+  c.jpeg_quality = static_cast<int>(f.number("jpeg_quality", c.jpeg_quality, 0, 100));
+}
+
+const std::initializer_list<const char*> kSensorKeys = {"model",
+                                                        "profile",
+                                                        "min_depth",
+                                                        "max_depth",
+                                                        "disparity_noise",
+                                                        "disparity_step",
+                                                        "baseline",
+                                                        "rgb_noise",
+                                                        "exposure",
+                                                        "readout",
+                                                        "max_subframes",
+                                                        "flying_pixels",
+                                                        "dark_dropout",
+                                                        "misregistration",
+                                                        "depth_offset",
+                                                        "k1",
+                                                        "k2",
+                                                        "p1",
+                                                        "p2",
+                                                        "k3",
+                                                        "light",
+                                                        "light_events",
+                                                        "flicker",
+                                                        "mains",
+                                                        "auto_exposure",
+                                                        "ae_target",
+                                                        "ae_time_constant",
+                                                        "max_exposure",
+                                                        "max_gain",
+                                                        "vignetting",
+                                                        "lens_blur",
+                                                        "demosaic",
+                                                        "bayer",
+                                                        "full_well",
+                                                        "read_noise",
+                                                        "jpeg_quality"};
+
+void read_sensor_keys(const Fields& f, SensorSpec& s);
+
+// `profile: NAME` (scenarios/sensors/NAME.yaml) or a YAML file: a real
+// camera's sensor keys, read first; the scenario's own keys override them.
+void read_sensor_profile(const Fields& f, SensorSpec& s) {
+  const std::string value = f.str("profile");
+  const bool is_file =
+      value.find('/') != std::string::npos || fs::path(value).extension() == ".yaml";
+  const std::string path =
+      is_file ? f.existing_file("profile") : project_file("scenarios/sensors/" + value + ".yaml");
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec))
+    fail(f.where(f.node("profile")),
+         "unknown sensor profile '" + printable(value) + "' (no " + path + ")");
+  const YAML::Node root = load_yaml_file(path, "sensor profile");
+  const Source source{path, {}};
+  Fields top(root, source, "sensor profile");
+  top.allow_only({"sensor"});
+  if (!top.has("sensor")) fail(path, "a sensor profile is a 'sensor:' map");
+  Fields profile(top.node("sensor"), source, "sensor");
+  if (profile.has("profile"))
+    fail(profile.where(profile.node("profile")), "a profile cannot name another profile");
+  read_sensor_keys(profile, s);
+}
+
 void read_sensor(const Fields& f, SensorSpec& s) {
-  f.allow_only({"model", "min_depth", "max_depth", "disparity_noise", "disparity_step", "baseline",
-                "rgb_noise", "exposure", "readout", "max_subframes", "flying_pixels",
-                "dark_dropout", "misregistration", "depth_offset", "k1", "k2", "p1", "p2", "k3"});
+  if (f.has("profile")) read_sensor_profile(f, s);
+  read_sensor_keys(f, s);
+}
+
+void read_sensor_keys(const Fields& f, SensorSpec& s) {
+  f.allow_only(kSensorKeys);
   std::string model = f.str("model", "kinect");
   if (model != "kinect" && model != "ideal")
     fail(f.where(f.node("model")),
@@ -253,6 +371,17 @@ void read_sensor(const Fields& f, SensorSpec& s) {
   s.lens.p1 = f.number("p1", s.lens.p1, -0.1, 0.1);
   s.lens.p2 = f.number("p2", s.lens.p2, -0.1, 0.1);
   s.lens.k3 = f.number("k3", s.lens.k3, -1.0, 1.0);
+  read_light_and_colour(f, s);
+  if (s.exposure_control.automatic && !s.ideal) {
+    if (s.exposure <= 0)
+      fail(f.where(f.node("auto_exposure")),
+           "auto_exposure starts from the sensor's 'exposure' (the exposure the render stands "
+           "for): set exposure > 0");
+    if (s.exposure > s.exposure_control.max_exposure)
+      fail(f.where(f.node("exposure") ? f.node("exposure") : f.node("auto_exposure")),
+           "sensor exposure = " + std::to_string(s.exposure) + " s is longer than max_exposure = " +
+               std::to_string(s.exposure_control.max_exposure) + " s");
+  }
 }
 
 std::string format_ms(double seconds) {
@@ -281,11 +410,16 @@ void check_shutter_fits_frame(const Fields& top, const Scenario& s) {
     fail(top.where(n["depth_offset"]), "sensor depth_offset = " + format_ms(s.sensor.depth_offset) +
                                            " is more than a quarter frame (" +
                                            format_ms(0.25 / s.timestamps.rate) + ")");
-  const double span = s.sensor.exposure + s.sensor.readout;
+  const double span = s.sensor.longest_exposure() + s.sensor.readout;
   if (!s.timestamps.file.empty() || span <= 1.0 / s.timestamps.rate + 1e-12) return;
-  fail(top.where(n["readout"] ? n["readout"] : n["exposure"]),
-       "sensor exposure + readout = " + format_ms(span) + " is longer than a frame (" +
-           format_ms(1.0 / s.timestamps.rate) + " at " + format_hz(s.timestamps.rate) + ")");
+  const bool automatic = s.sensor.exposure_control.automatic;
+  const char* key = automatic ? "max_exposure" : "exposure";
+  fail(top.where(n["readout"] ? n["readout"]
+                 : n[key]     ? n[key]
+                              : n),
+       std::string("sensor ") + key + " + readout = " + format_ms(span) +
+           " is longer than a frame (" + format_ms(1.0 / s.timestamps.rate) + " at " +
+           format_hz(s.timestamps.rate) + ")");
 }
 
 // `camera_cover: [[start, end], ...]`, seconds since the first frame. Every

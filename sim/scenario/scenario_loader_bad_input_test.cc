@@ -89,5 +89,63 @@ TEST(ScenarioBadInput, TimingAndDepthClockOutOfRangeAreOneError) {
   std::filesystem::remove(drops);
 }
 
+// Light, exposure control, the colour pipeline and sensor profiles: each
+// mistake is one line naming the file and line.
+TEST(ScenarioBadInput, LightExposureAndColourMistakesAreOneError) {
+  const struct {
+    std::string sensor, error;
+  } cases[] = {
+      {"{light: -0.5}", ":3: 'light' = -0.500000 is out of range [0.000000, 10.000000]"},
+      {"{light_events: [[1, 1], [0.5, 0.2]]}", ":3: light_events must be in time order"},
+      {"{light_events: [[1, 1], [2]]}", ":3: a light event must be [time, level]"},
+      {"{light_events: 3}", ":3: 'light_events' must be a list of [time, level]"},
+      {"{light_events: [[1, 20]]}", ":3: a light level must be within [0, 10]"},
+      {"{flicker: 1.5}", ":3: 'flicker' = 1.500000 is out of range [0.000000, 1.000000]"},
+      {"{auto_exposure: true}",
+       ":3: auto_exposure starts from the sensor's 'exposure' (the exposure the render stands "
+       "for): set exposure > 0"},
+      {"{auto_exposure: yes please, exposure: 0.01}", ":3: bad value for 'auto_exposure'"},
+      {"{auto_exposure: true, exposure: 0.02, max_exposure: 0.01}",
+       ":3: sensor exposure = 0.020000 s is longer than max_exposure = 0.010000 s"},
+      {"{auto_exposure: true, exposure: 0.01, max_exposure: 0.03, readout: 0.01}",
+       ":3: sensor max_exposure + readout = 40.0 ms is longer than a frame (33.3 ms at 30 Hz)"},
+      {"{vignetting: 0}", ":3: 'vignetting' = 0.000000 is out of range [0.050000, 1.000000]"},
+      {"{demosaic: vng}", ":3: unknown demosaic 'vng' (expected none, bilinear or edge_aware)"},
+      {"{bayer: rgbg}", ":3: unknown bayer pattern 'rgbg' (expected rggb, grbg, gbrg or bggr)"},
+      {"{full_well: 50}",
+       ":3: 'full_well' must be 0 (no sensor noise model) or at least 100 electrons"},
+      {"{jpeg_quality: 101}",
+       ":3: 'jpeg_quality' = 101.000000 is out of range [0.000000, 100.000000]"},
+      {"{profile: no_such_camera}", ":3: unknown sensor profile 'no_such_camera' (no "},
+  };
+  for (const auto& c : cases) {
+    const std::string path = write_scenario(
+        "colour.yaml", "name: x\nmotion: {type: static}\nsensor: " + c.sensor + "\n");
+    const std::string error = error_of([&] { load_scenario(path); });
+    EXPECT_EQ(error.substr(0, path.size() + c.error.size()), path + c.error) << c.sensor;
+    EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+    std::filesystem::remove(path);
+  }
+}
+
+// A profile's keys come first; the scenario's own keys override them; a
+// mistake inside a profile names the profile's file and line.
+TEST(ScenarioBadInput, ProfilesAreReadFirstAndTheirMistakesNameTheirFile) {
+  const std::string profile = write_scenario(
+      "camera_profile.yaml", "# a camera\nsensor:\n  rgb_noise: 1.5\n  vignetting: 0.7\n");
+  const std::string path = write_scenario(
+      "profiled.yaml",
+      "name: x\nmotion: {type: static}\nsensor: {profile: " + profile + ", vignetting: 0.9}\n");
+  const Scenario s = load_scenario(path);
+  EXPECT_DOUBLE_EQ(s.sensor.rgb_noise, 1.5);
+  EXPECT_DOUBLE_EQ(s.sensor.colour.vignetting, 0.9);
+  const std::string bad = write_scenario("bad_profile.yaml", "sensor:\n  lens_blur: -1\n");
+  const std::string uses_bad = write_scenario(
+      "uses_bad.yaml", "name: x\nmotion: {type: static}\nsensor: {profile: " + bad + "}\n");
+  EXPECT_EQ(error_of([&] { load_scenario(uses_bad); }),
+            bad + ":2: 'lens_blur' = -1.000000 is out of range [0.000000, 10.000000]");
+  for (const auto& p : {profile, path, bad, uses_bad}) std::filesystem::remove(p);
+}
+
 }  // namespace
 }  // namespace depot::sim

@@ -5,26 +5,9 @@
 #include <vector>
 
 #include "common/rng.h"
+#include "sim/sensor/noise_table.h"
 
 namespace depot::sim {
-
-namespace {
-
-// Gaussian noise of unit-ish sigma as int8 (scaled by 16), drawn once; each
-// image row reads it at a fresh random offset, so noise differs per row and
-// frame at the cost of one table lookup per pixel.
-const std::vector<int8_t>& noise_table() {
-  static const std::vector<int8_t> table = [] {
-    std::vector<int8_t> t(1 << 20);
-    Rng rng(0x6e015e);
-    for (auto& v : t)
-      v = static_cast<int8_t>(std::clamp(std::lround(16.0 * rng.normal()), -127L, 127L));
-    return t;
-  }();
-  return table;
-}
-
-}  // namespace
 
 cv::Mat apply_depth_model(const cv::Mat& depth, const SensorSpec& sensor, double focal,
                           uint64_t seed) {
@@ -43,9 +26,7 @@ cv::Mat apply_depth_model(const cv::Mat& depth, const SensorSpec& sensor, double
     // j - x < fb (1/z_j - 1/z_x), i.e. fb/z_j - j > fb/z_x - x. Scanning right
     // to left keeps the running maximum of fb/z_j - j.
     double best = -1e30;
-    size_t offset = rng.next_u64() & (noise_table().size() - 1);
-    if (offset + w > noise_table().size()) offset = noise_table().size() - w;
-    const int8_t* noise = noise_table().data() + offset;
+    const int8_t* noise = noise_row(rng, w);
     for (int x = w - 1; x >= 0; --x) {
       const double z = in[x];
       if (z <= 0.0) continue;
@@ -68,16 +49,12 @@ cv::Mat apply_depth_model(const cv::Mat& depth, const SensorSpec& sensor, double
 
 void apply_rgb_noise(cv::Mat& bgr, double sigma, uint64_t seed) {
   if (sigma <= 0) return;
-  const auto& table = noise_table();
-  const size_t mask = table.size() - 1;
   Rng rng(seed);
   const int scale = static_cast<int>(std::lround(sigma * 16.0));  // fixed point, /256
   const int n = bgr.cols * bgr.channels();
   for (int y = 0; y < bgr.rows; ++y) {
     uchar* p = bgr.ptr<uchar>(y);
-    size_t offset = rng.next_u64() & mask;
-    if (offset + n > table.size()) offset = table.size() - n;
-    const int8_t* noise = table.data() + offset;
+    const int8_t* noise = noise_row(rng, n);
     for (int i = 0; i < n; ++i) {
       const int v = p[i] + ((noise[i] * scale + (1 << 7)) >> 8);
       p[i] = static_cast<uchar>(v < 0 ? 0 : v > 255 ? 255 : v);

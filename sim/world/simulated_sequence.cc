@@ -10,6 +10,7 @@
 #include "sim/actors/actor_variation.h"
 #include "sim/scene/obstacles.h"
 #include "sim/scene/scene_layout.h"
+#include "sim/sensor/light.h"
 #include "sim/sensor/shutter.h"
 #include "sim/world/camera_clearance.h"
 
@@ -24,7 +25,7 @@ constexpr double kSmearDepth = 1.0;  // m
 
 std::pair<double, double> frame_instants_range(const Scenario& s) {
   if (s.sensor.ideal) return {0.0, 0.0};
-  const double half = 0.5 * (s.sensor.exposure + s.sensor.readout);
+  const double half = 0.5 * (s.sensor.longest_exposure() + s.sensor.readout);
   return {std::min(-half, s.sensor.depth_offset), std::max(half, s.sensor.depth_offset)};
 }
 
@@ -73,7 +74,9 @@ RenderedFrame covered_frame(const CameraIntrinsics& camera) {
 }
 
 SimulatedSequence::SimulatedSequence(const Scenario& scenario, GlBackend backend, bool render)
-    : scenario_(scenario), classes_(ClassTable::load(scenario.classes_path)) {
+    : scenario_(scenario),
+      classes_(ClassTable::load(scenario.classes_path)),
+      exposure_control_(scenario.sensor.exposure_control, scenario.sensor.exposure) {
   stamps_ = frame_timestamps(scenario_);
   if (stamps_.empty()) fail(scenario_.source_path, "no frames to render");
   SceneLayout layout = load_scene_layout(scenario_.scene_path);
@@ -146,6 +149,8 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
   // are the covered camera's (nothing rendered, so a cover also costs nothing).
   const bool covered = is_covered(scenario_.camera_cover, since_first);
   if (timings) *timings = SequenceTimings();
+  // Auto-exposure chose this frame's exposure from the frames before it.
+  if (scenario_.sensor.forms_colour()) shutter_.exposure = exposure_control_.current().exposure;
   // Sub-frames across the exposure and readout (sim/sensor/shutter.h), in
   // time order; the one at offset 0 gives depth, labels and truth.
   const bool shutter = frame && !covered && shutter_.active();
@@ -194,6 +199,8 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
   }
   if (shutter) frame->bgr = integrate_shutter(colours, offsets, shutter_);
   if (own_depth) frame->depth = depth_frame.depth;
+  if (scenario_.sensor.forms_colour())
+    truth.capture = expose(frame ? &frame->bgr : nullptr, since_first);
   if (timings) timings->subframes = static_cast<int>(instants.size());
   ++next_;
   return true;
@@ -209,6 +216,25 @@ void SimulatedSequence::render_colour(cv::Mat& bgr, RenderTimings* timings) {
   if (!lens_) return renderer_->render_colour(world_->data(), bgr, timings);
   renderer_->render_colour(world_->data(), canvas_.bgr, timings);
   apply_lens_colour(*lens_, canvas_.bgr, bgr);
+}
+
+ColourCapture SimulatedSequence::expose(const cv::Mat* bgr, double since_first) {
+  ColourCapture capture;
+  const ExposureSetting& setting = exposure_control_.current();
+  capture.exposure = setting.exposure;
+  capture.gain = setting.gain;
+  capture.scale = setting.scale;
+  const int rows = scenario_.camera.height;
+  std::vector<double> row_offsets(rows);
+  for (int y = 0; y < rows; ++y) row_offsets[y] = shutter_.row_offset(y, rows);
+  capture.row_light =
+      row_light_levels(scenario_.sensor.light, since_first, setting.exposure, row_offsets);
+  // The meter reads the frame as the sensor will expose it; without images
+  // (truth only) the loop cannot run and the exposure stays where it is.
+  if (bgr && !bgr->empty())
+    exposure_control_.observe(metered_brightness(*bgr, scenario_.sensor.colour, capture),
+                              1.0 / scenario_.timestamps.rate);
+  return capture;
 }
 
 double SimulatedSequence::image_motion_over_span(double t_rgb) const {

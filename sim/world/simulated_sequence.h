@@ -11,6 +11,8 @@
 #include "sim/render/renderer.h"
 #include "sim/scenario/class_table.h"
 #include "sim/scenario/scenario.h"
+#include "sim/sensor/auto_exposure.h"
+#include "sim/sensor/colour_pipeline.h"
 #include "sim/sensor/lens.h"
 #include "sim/sensor/shutter.h"
 #include "sim/world/world.h"
@@ -34,6 +36,9 @@ struct FrameTruth {
   // covered_frame()), while the camera and the objects keep their true poses.
   bool covered = false;
   std::vector<ObjectState> objects;  // every pushable and actor instance
+  // How the colour image was exposed (sim/sensor/colour_pipeline.h): the
+  // exposure and gain auto-exposure chose, the light each row saw.
+  ColourCapture capture;
 };
 
 struct SequenceTimings {
@@ -89,7 +94,8 @@ class SimulatedSequence {
   std::vector<const Instance*> tracked_;            // pushables and actors
   std::vector<std::vector<Pose>> previous_bodies_;  // per tracked instance
   int next_ = 0;
-  ShutterTiming shutter_;       // inactive for an ideal sensor
+  ShutterTiming shutter_;  // inactive for an ideal sensor
+  ExposureControl exposure_control_;
   double depth_offset_ = 0;     // s, the depth camera's instant (0 for an ideal sensor)
   double last_body_speed_ = 0;  // m/s, fastest tracked body over the last frame
 
@@ -102,6 +108,8 @@ class SimulatedSequence {
   double image_motion_over_span(double t_rgb) const;
   void record_truth(const Pose& world_camera, double t_rgb, double t_depth, bool covered,
                     FrameTruth& truth);
+  // The capture's exposure and light; meters `bgr` for the next frame.
+  ColourCapture expose(const cv::Mat* bgr, double since_first);
 };
 
 }  // namespace depot::sim

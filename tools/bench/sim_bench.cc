@@ -20,6 +20,7 @@
 #include "common/rng.h"
 #include "sim/pipeline/render_dataset.h"
 #include "sim/scenario/scenario_loader.h"
+#include "sim/sensor/colour_pipeline.h"
 #include "sim/sensor/kinect_model.h"
 #include "sim/world/simulated_sequence.h"
 
@@ -111,7 +112,7 @@ int main(int argc, char** argv) {
         auto t0 = Clock::now();
         cv::Mat depth = depot::sim::apply_depth_model(frame.depth, scenario.sensor,
                                                       scenario.camera.f, truth.index);
-        depot::sim::apply_rgb_noise(frame.bgr, scenario.sensor.rgb_noise, truth.index);
+        depot::sim::apply_colour_sensor(frame.bgr, scenario.sensor, truth.capture, truth.index);
         cv::Mat depth16 = depot::sim::depth_to_u16(depth, scenario.camera.depth_factor);
         auto t1 = Clock::now();
         cv::imencode(".png", frame.bgr, buf,

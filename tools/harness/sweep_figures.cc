@@ -58,16 +58,26 @@ void add_pair(const SweepPlan& plan, const SweepSummary& s, const std::vector<si
   rejection.log_y = false;
   rejection.y_lo = 0.0;
   rejection.y_hi = 1.0;
+  // Rejection may cost frames: ATE alone, over the frames kept, hides that.
+  eval::SeriesPlot tracked = ate;
+  tracked.title = "Tracked share vs " + x_label + (group.empty() ? "" : " (" + group + ")");
+  tracked.y_label = "frames with a pose / frames";
+  tracked.log_y = false;
+  tracked.y_lo = 0.0;
+  tracked.y_hi = 1.0;
   bool any_ate = false, any_rejection = false;
   for (const std::string& mode : plan.spec.modes) {
     const std::string colour = eval::series_colour(mode_colour_index(mode));
     eval::PlotSeries a{mode, colour, "", {}, {}};
+    eval::PlotSeries t{mode, colour, "", {}, {}};
     eval::PlotSeries p{mode + " precision", colour, "", {}, {}};
     eval::PlotSeries r{mode + " recall", colour, "6 4", {}, {}, eval::PlotMarker::kSquare};
     for (size_t c : cells) {
       const CellModeSummary& e = *s.find(c, mode);
       a.mean.push_back(e.ate_rmse.mean);
       a.std.push_back(e.ate_rmse.std);
+      t.mean.push_back(e.tracked_share.mean);
+      t.std.push_back(e.tracked_share.std);
       p.mean.push_back(e.precision_without_boundary.mean);
       p.std.push_back(e.precision_without_boundary.std);
       r.mean.push_back(e.recall.mean);
@@ -76,14 +86,18 @@ void add_pair(const SweepPlan& plan, const SweepSummary& s, const std::vector<si
       any_rejection = any_rejection || e.precision_without_boundary.count > 0 || e.recall.count > 0;
     }
     ate.series.push_back(a);
+    tracked.series.push_back(t);
     if (mode != "orb") {
       rejection.series.push_back(p);
       rejection.series.push_back(r);
     }
   }
   const std::string suffix = group_index.empty() ? "" : "__" + group_index;
-  if (any_ate)
+  if (any_ate) {
     out.push_back({"ate_vs_" + stem + suffix + ".svg", ate.title, render_series_plot_svg(ate)});
+    out.push_back(
+        {"tracked_vs_" + stem + suffix + ".svg", tracked.title, render_series_plot_svg(tracked)});
+  }
   if (any_rejection)
     out.push_back({"rejection_vs_" + stem + suffix + ".svg", rejection.title,
                    render_series_plot_svg(rejection)});

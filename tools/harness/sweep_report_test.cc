@@ -75,8 +75,9 @@ TEST_F(SweepReportTest, WritesTablesCsvPlotsAndOneSelfContainedPage) {
   EXPECT_NE(md.find("3 of 6"), std::string::npos);
   EXPECT_NE(md.find("paper Table 3"), std::string::npos);
   EXPECT_NE(md.find("paper Table 4"), std::string::npos);
-  for (const char* csv : {"table2_ablation.csv", "table3_ate_vs_orb.csv", "table4_rpe_vs_orb.csv",
-                          "rejection.csv", "runs.csv", "ate_vs_load.svg", "rejection_vs_load.svg"})
+  for (const char* csv :
+       {"table2_ablation.csv", "table3_ate_vs_orb.csv", "table4_rpe_vs_orb.csv", "rejection.csv",
+        "runs.csv", "ate_vs_load.svg", "tracked_vs_load.svg", "rejection_vs_load.svg"})
     EXPECT_TRUE(fs::is_regular_file(root / "report" / csv)) << csv;
 
   const std::string html = read(files.html);

@@ -35,7 +35,8 @@ std::vector<SweepParameter> parameters_from_json(const nlohmann::json& j) {
 // The named parameters whose levels are plain numbers.
 bool is_numeric_alias(const std::string& name) {
   return name == "load" || name == "depth_noise" || name == "rgb_noise" || name == "exposure" ||
-         name == "readout" || name == "distortion" || name == "miss_rate" || name == "latency";
+         name == "readout" || name == "distortion" || name == "light" || name == "miss_rate" ||
+         name == "latency";
 }
 
 }  // namespace
@@ -53,6 +54,7 @@ ParameterKey resolve_parameter(const std::string& name, const std::string& where
       {"exposure", ParameterTarget::kScenario, "sensor.exposure"},
       {"readout", ParameterTarget::kScenario, "sensor.readout"},
       {"distortion", ParameterTarget::kScenario, "sensor.k1"},
+      {"light", ParameterTarget::kScenario, "sensor.light"},
       {"miss_rate", ParameterTarget::kDetector, "miss_rate"},
       {"latency", ParameterTarget::kDetector, "latency_frames"},
   };
@@ -61,9 +63,10 @@ ParameterKey resolve_parameter(const std::string& name, const std::string& where
   if (starts_with(name, "scenario.")) return {name, ParameterTarget::kScenario, name.substr(9)};
   if (starts_with(name, "detector.")) return {name, ParameterTarget::kDetector, name.substr(9)};
   if (starts_with(name, "rejection.")) return {name, ParameterTarget::kRejection, name.substr(10)};
-  fail(where, "unknown parameter '" + name +
-                  "' (use load, depth_noise, rgb_noise, exposure, readout, distortion, miss_rate, "
-                  "latency, scenario.KEY, detector.KEY or rejection.KEY)");
+  fail(where,
+       "unknown parameter '" + name +
+           "' (use load, depth_noise, rgb_noise, exposure, readout, distortion, light, miss_rate, "
+           "latency, scenario.KEY, detector.KEY or rejection.KEY)");
 }
 
 SweepParameter parse_sweep_parameter(const std::string& text, const std::string& where) {

@@ -31,6 +31,7 @@ TEST(SweepSpec, ParsesLevelsAndResolvesAliases) {
   EXPECT_EQ(resolve_parameter("exposure").key, "sensor.exposure");
   EXPECT_EQ(resolve_parameter("readout").key, "sensor.readout");
   EXPECT_EQ(resolve_parameter("distortion").key, "sensor.k1");
+  EXPECT_EQ(resolve_parameter("light").key, "sensor.light");
   EXPECT_EQ(resolve_parameter("detector.jitter").target, ParameterTarget::kDetector);
   EXPECT_EQ(resolve_parameter("rejection.ego_flow").target, ParameterTarget::kRejection);
   EXPECT_EQ(resolve_parameter("rejection.ego_flow").key, "ego_flow");

@@ -1,0 +1,103 @@
+// Light and exposure on real renders: when the depot's light drops to a
+// quarter, the first frames after it are dark (the camera was exposed for
+// the old light), then auto-exposure brings the image back to its
+// brightness with its time constant, exposure first and gain once the
+// exposure is at its longest; exposures.txt states what it chose. The
+// colour pipeline's stages all on still give byte-identical datasets.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "dataset/exposures.h"
+#include "sim/sensor/auto_exposure.h"
+#include "tests/support/dataset_reader.h"
+#include "tests/support/render_helpers.h"
+
+namespace depot::test {
+namespace {
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+double mean_grey(const Dataset& d, size_t frame) {
+  cv::Mat grey;
+  cv::cvtColor(d.rgb(frame), grey, cv::COLOR_BGR2GRAY);
+  return cv::mean(grey)[0];
+}
+
+TEST(SimLight, AutoExposureRecoversFromALightDropWithItsLag) {
+  const int drop_frame = 15;  // the light falls to a quarter at 0.5 s
+  const double tau = 0.15;
+  SmallRender r("depot_static", 45, 96, false, 3);
+  r.set = {{"sensor.light_events", "[[0.49, 1], [0.49, 0.25]]"},
+           {"sensor.auto_exposure", "true"},
+           {"sensor.exposure", "0.008"},
+           {"sensor.max_exposure", "0.02"},
+           {"sensor.ae_time_constant", std::to_string(tau)},
+           {"sensor.rgb_noise", "0"}};
+  const std::string root = render_small(r);
+  const Dataset d = read_dataset(root);
+  const auto exposures = dataset::read_exposures(root);
+  ASSERT_EQ(exposures.size(), 45u);
+  ASSERT_EQ(d.frames.size(), 45u);
+  auto total = [&](size_t i) { return exposures[i].exposure * exposures[i].gain; };
+  for (size_t i = 0; i < exposures.size(); ++i) {
+    EXPECT_NEAR(exposures[i].timestamp, d.frames[i].rgb_timestamp, 1e-6);
+    EXPECT_DOUBLE_EQ(exposures[i].light, static_cast<int>(i) < drop_frame ? 1.0 : 0.25) << i;
+    if (exposures[i].gain > 1.0) {
+      EXPECT_NEAR(exposures[i].exposure, 0.02, 1e-9) << i;
+    }
+  }
+  // The loop had settled before the drop; the frame after it is exposed
+  // for the old light and comes out dark.
+  const double before = total(drop_frame - 1);
+  EXPECT_NEAR(total(drop_frame - 2) / before, 1.0, 0.02);
+  EXPECT_NEAR(total(drop_frame) / before, 1.0, 0.01);
+  // On target (0.45 of full scale) before; the camera meters every fourth
+  // pixel of every fourth row, the test every pixel: 2 % of full scale.
+  const double target = 0.45 * 255, metering = 5.0;
+  const double bright = mean_grey(d, drop_frame - 1);
+  EXPECT_NEAR(bright, target, metering);
+  EXPECT_LT(mean_grey(d, drop_frame), 0.75 * bright);
+  // One time constant later, 1 - 1/e of the way in exposure x gain (log),
+  // and four later back on target, at 4x the exposure x gain.
+  const int lag = static_cast<int>(std::lround(tau * 30));
+  const double reached = std::log(total(drop_frame + lag) / before) / std::log(4.0);
+  EXPECT_NEAR(reached, 1.0 - std::exp(-1.0), 0.12);
+  EXPECT_NEAR(total(44) / before, 4.0, 0.25);
+  EXPECT_GT(exposures[44].gain, 1.0);
+  EXPECT_NEAR(mean_grey(d, 44), target, metering);
+  const std::string calibration = file_text(root + "/calibration.yaml");
+  EXPECT_NE(calibration.find("  auto_exposure: true\n"), std::string::npos) << calibration;
+}
+
+TEST(SimLight, EveryStageOnGivesByteIdenticalDatasetsAndTheTruthStays) {
+  SmallRender plain("depot_walking_xyz", 5, 128, false, 4);
+  SmallRender formed = plain;
+  formed.set = {
+      {"sensor.light", "0.6"},      {"sensor.flicker", "0.3"},   {"sensor.readout", "0.02"},
+      {"sensor.vignetting", "0.7"}, {"sensor.lens_blur", "0.8"}, {"sensor.demosaic", "edge_aware"},
+      {"sensor.full_well", "6000"}, {"sensor.read_noise", "10"}, {"sensor.jpeg_quality", "85"}};
+  const std::string a = render_small(formed);
+  const std::string b = render_small(formed);
+  EXPECT_EQ(compare_trees(a, b), "");
+  const std::string c = render_small(plain);
+  for (const char* name : {"groundtruth.txt", "object_poses.txt", "boxes.txt", "depth.txt"})
+    EXPECT_EQ(file_text(a + "/" + name), file_text(c + "/" + name)) << name;
+  EXPECT_NE(compare_trees(a + "/rgb", c + "/rgb"), "");
+  EXPECT_FALSE(std::filesystem::exists(c + "/exposures.txt"));
+  // Flicker under the rolling shutter: the light column is the middle row's.
+  for (const auto& e : dataset::read_exposures(a)) {
+    EXPECT_GE(e.light, 0.6 * 0.7 - 1e-9);
+    EXPECT_LE(e.light, 0.6 * 1.3 + 1e-9);
+  }
+}
+
+}  // namespace
+}  // namespace depot::test
