@@ -103,7 +103,6 @@ class SimulatedSequence {
   void render(RenderedFrame& out, RenderTimings* timings);
   void render_colour(cv::Mat& bgr, RenderTimings* timings);
   bool advance(RenderedFrame* frame, FrameTruth& truth, SequenceTimings* timings);
-  void check_instants_fit_timestamps() const;
   // Largest image motion (px) expected over the shutter's span at t_rgb.
   double image_motion_over_span(double t_rgb) const;
   void record_truth(const Pose& world_camera, double t_rgb, double t_depth, bool covered,

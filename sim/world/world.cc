@@ -97,6 +97,7 @@ World::World(SceneModel scene) : scene_(std::move(scene)) {
 }
 
 World::~World() {
+  if (checkpoint_) mj_deleteData(checkpoint_);
   if (data_) mj_deleteData(data_);
   if (model_) mj_deleteModel(model_);
 }
@@ -135,14 +136,34 @@ void World::pose_actors(double t) {
   }
 }
 
-void World::advance_to(double t) {
+void World::step_while_before(double limit) {
   const double dt = model_->opt.timestep;
-  while (data_->time + 0.5 * dt < t) {
+  while (data_->time + dt < limit) {
     pose_actors(data_->time + dt);
     mj_step(model_, data_);
   }
+}
+
+void World::advance_to(double t) {
+  // To the physics step nearest t.
+  step_while_before(t + 0.5 * model_->opt.timestep);
   pose_actors(t);
   mj_forward(model_, data_);
+}
+
+void World::save_checkpoint_before(double t) {
+  step_while_before(t + 1e-12);
+  if (!checkpoint_) checkpoint_ = mj_makeData(model_);
+  mj_copyData(checkpoint_, model_, data_);
+}
+
+void World::restore_checkpoint() {
+  if (!checkpoint_) fail("world", "no checkpoint to restore");
+  mj_copyData(data_, model_, checkpoint_);
+}
+
+double World::checkpoint_time() const {
+  return checkpoint_ ? checkpoint_->time : -1.0;
 }
 
 void World::set_camera_pose(const Pose& world_camera) {

@@ -21,6 +21,15 @@ class World {
 
   // Steps physics to time t (s; never backwards), posing actors every step.
   void advance_to(double t);
+  // Steps physics up to the last step at or before t and keeps a copy of
+  // the whole state there, to come back to: a shutter whose span is longer
+  // than a frame needs instants before where the world has already
+  // stepped. Actors are functions of time, so the copy is all of it.
+  void save_checkpoint_before(double t);
+  // Back to the saved state (stepping on from it gives the same states).
+  void restore_checkpoint();
+  // Time of the saved state; negative when none was saved.
+  double checkpoint_time() const;
   // Places the camera (T_world_camera, OpenCV axes) and updates kinematics.
   void set_camera_pose(const Pose& world_camera);
 
@@ -45,10 +54,13 @@ class World {
 
  private:
   void pose_actors(double t);
+  // Steps physics while the next step ends before `limit` (s).
+  void step_while_before(double limit);
 
   SceneModel scene_;
   mjModel* model_ = nullptr;
   mjData* data_ = nullptr;
+  mjData* checkpoint_ = nullptr;
   int camera_id_ = -1;
   int camera_mocap_ = -1;
   std::vector<std::vector<int>> instance_bodies_;  // body ids per instance
