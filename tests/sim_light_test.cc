@@ -99,5 +99,19 @@ TEST(SimLight, EveryStageOnGivesByteIdenticalDatasetsAndTheTruthStays) {
   }
 }
 
+// The shipped sensor profiles (scenarios/sensors/) load and render, and
+// calibration.yaml states what they set; the scenario's own keys win.
+TEST(SimLight, ShippedSensorProfilesRenderAndStateTheirCamera) {
+  for (const char* profile : {"kinect_v1", "realsense_d435"}) {
+    SmallRender r("depot_walking_xyz", 3, 64, false, 2);
+    r.set = {{"sensor.profile", profile}, {"sensor.max_subframes", "3"}};
+    const std::string root = render_small(r);
+    EXPECT_EQ(dataset::read_exposures(root).size(), 3u) << profile;
+    const std::string calibration = file_text(root + "/calibration.yaml");
+    EXPECT_NE(calibration.find("  bayer: grbg"), std::string::npos) << profile;
+    EXPECT_NE(calibration.find("  readout: 0.0"), std::string::npos) << profile;
+  }
+}
+
 }  // namespace
 }  // namespace depot::test

@@ -88,5 +88,23 @@ TEST(ScenarioStyle, SetsActorsAndPropsWhichMayOverrideIt) {
       << error;
 }
 
+// A profile's keys come first and the scenario's override them; the shipped
+// profiles hold their cameras' sourced values.
+TEST(ScenarioSensorProfile, ShippedProfilesGiveTheirCamerasValues) {
+  const Scenario kinect = load_scenario(kWalking, {{"sensor.profile", "kinect_v1"}});
+  EXPECT_DOUBLE_EQ(kinect.sensor.readout, 0.028);
+  EXPECT_DOUBLE_EQ(kinect.sensor.baseline, 0.075);
+  EXPECT_TRUE(kinect.sensor.exposure_control.automatic);
+  EXPECT_EQ(kinect.sensor.colour.bayer, "grbg");
+  EXPECT_EQ(kinect.sensor.colour.demosaic, "bilinear");
+  EXPECT_EQ(kinect.sensor.colour.jpeg_quality, 0);
+  const Scenario d435 =
+      load_scenario(kWalking, {{"sensor.profile", "realsense_d435"}, {"sensor.max_gain", "4"}});
+  EXPECT_DOUBLE_EQ(d435.sensor.baseline, 0.05);
+  EXPECT_DOUBLE_EQ(d435.sensor.min_depth, 0.28);
+  EXPECT_DOUBLE_EQ(d435.sensor.exposure_control.max_gain, 4.0);  // the override wins
+  EXPECT_DOUBLE_EQ(d435.sensor.colour.full_well, 4300);
+}
+
 }  // namespace
 }  // namespace depot::sim
