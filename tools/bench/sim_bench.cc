@@ -2,10 +2,12 @@
 // end (render + labels + writing) at the scenario's resolution. Figures are
 // also given as ratios to the raw MuJoCo RGB+depth render measured in the
 // same run, so they compare across machines. Then both actor styles end to
-// end (mesh as a ratio to primitive, measured in the same run) and the
+// end (mesh as a ratio to primitive, measured in the same run), the colour
+// pipeline's stages (as ratios to the additive noise it replaces), and the
 // resident memory of a long sequence, early and at its end.
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -68,6 +70,49 @@ std::pair<double, double> sequence_memory(depot::sim::Scenario scenario, int fra
   for (int i = 0; sequence.next(frame, truth, nullptr); ++i)
     if (i == frames / 10) early = rss_mb();
   return {early, rss_mb()};
+}
+
+// Time of apply_colour_sensor on `frames` rendered frames, per frame (ms):
+// each stage of the colour pipeline added in turn, then a shipped profile.
+void colour_pipeline_costs(const depot::sim::Scenario& scenario, int frames) {
+  depot::sim::SimulatedSequence sequence(scenario, depot::sim::GlBackend::kOsMesa);
+  std::vector<cv::Mat> images;
+  depot::sim::RenderedFrame frame;
+  depot::sim::FrameTruth truth;
+  while (static_cast<int>(images.size()) < frames && sequence.next(frame, truth))
+    images.push_back(frame.bgr.clone());
+  depot::sim::SensorSpec sensor = scenario.sensor;
+  sensor.ideal = false;
+  std::vector<std::pair<std::string, depot::sim::SensorSpec>> steps;
+  steps.emplace_back("additive rgb_noise (baseline)", sensor);
+  sensor.light.level = 0.8;  // the pipeline runs from here on
+  steps.emplace_back("+ light and tone curve", sensor);
+  sensor.colour.vignetting = 0.7;
+  sensor.colour.lens_blur = 0.8;
+  steps.emplace_back("+ vignetting, lens blur", sensor);
+  sensor.colour.demosaic = "bilinear";
+  steps.emplace_back("+ Bayer, bilinear", sensor);
+  sensor.colour.demosaic = "edge_aware";
+  steps.emplace_back("  (edge_aware instead)", sensor);
+  sensor.colour.full_well = 10000;
+  sensor.colour.read_noise = 5;
+  steps.emplace_back("+ shot and read noise", sensor);
+  sensor.colour.jpeg_quality = 90;
+  steps.emplace_back("+ JPEG 90", sensor);
+  std::printf("colour pipeline (apply_colour_sensor, %zu frames at %dx%d)\n", images.size(),
+              scenario.camera.width, scenario.camera.height);
+  double baseline = 0;
+  for (const auto& [name, spec] : steps) {
+    const auto t0 = Clock::now();
+    for (size_t i = 0; i < images.size(); ++i) {
+      cv::Mat image = images[i].clone();
+      depot::sim::apply_colour_sensor(image, spec, {}, i);
+    }
+    const double per_frame = ms(t0, Clock::now()) / images.size();
+    if (baseline == 0) baseline = per_frame;
+    std::printf("  %-34s %8.2f ms/frame %8.2fx baseline\n", name.c_str(), per_frame,
+                per_frame / baseline);
+  }
 }
 
 void row(const char* stage, double ms_per_frame, double baseline_ms) {
@@ -151,6 +196,8 @@ int main(int argc, char** argv) {
     row("end to end (render + labels + write)", 1000.0 / fps, base);
     std::printf("  end to end: %.1f fps (target >= 25 fps at 640x480), %.1f MB written\n", fps,
                 mb_written);
+
+    colour_pipeline_costs(scenario, std::min(frames, 60));
 
     // Actor styles side by side, same scenario and frames.
     std::printf("actor styles (scenario's style: %s)\n", scenario.actors_style.c_str());

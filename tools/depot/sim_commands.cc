@@ -71,11 +71,15 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
       s.frames, scenario.name.c_str(), s.output.c_str(), s.seconds, s.frames / s.seconds,
       s.physics_ms, s.color_depth_ms, s.segmentation_ms, s.convert_ms, s.sensor_ms,
       s.encode_write_ms, s.bytes / 1e6);
-  if (s.subframes > 1.0)
+  if (s.subframes > 1.0) {
+    // Under auto-exposure the exposure is each frame's own (exposures.txt).
+    const bool automatic = scenario.sensor.exposure_control.automatic;
     std::printf(
-        "shutter: %.1f colour renders per frame on average (exposure %.1f ms, readout %.1f "
+        "shutter: %.1f colour renders per frame on average (exposure %s%.1f ms, readout %.1f "
         "ms; sim/sensor/shutter.h)\n",
-        s.subframes, scenario.sensor.exposure * 1e3, scenario.sensor.readout * 1e3);
+        s.subframes, automatic ? "auto, up to " : "", scenario.sensor.longest_exposure() * 1e3,
+        scenario.sensor.readout * 1e3);
+  }
 }
 
 void run_list() {
