@@ -221,7 +221,9 @@ void DatasetWriter::write_text_files() {
             << "# row y is exposed (y / (height - 1) - 0.5) x readout later. Depth, labels and\n"
             << "# groundtruth.txt belong to the timestamp.\n"
             << "shutter:\n  exposure: " << s.exposure << "  # s\n  readout: " << s.readout
-            << "  # s, first row to last\n";
+            << "  # s, first row to last\n"
+            << "  motion_blur: " << s.motion_blur
+            << "  # subframes: rendered at each instant; field: moved from one render\n";
     calibration += shutter.str();
   }
   const bool artefacts = s.flying_pixels > 0 || s.dark_dropout > 0 ||

@@ -34,7 +34,7 @@ RenderSummary render_dataset(Scenario scenario, const RenderRequest& request) {
   RenderedFrame frame;
   FrameTruth truth;
   SequenceTimings t;
-  double subframes = 0;
+  double subframes = 0, renders = 0;
   while (sequence.next(frame, truth, &t)) {
     throw_if_interrupted(request.dataset.output);
     summary.physics_ms += t.physics_ms;
@@ -42,6 +42,8 @@ RenderSummary render_dataset(Scenario scenario, const RenderRequest& request) {
     summary.segmentation_ms += t.render.segmentation_ms;
     summary.convert_ms += t.render.convert_ms;
     subframes += t.subframes;
+    renders += t.renders;
+    summary.field_ms += t.field_ms;
     writer.add(std::move(frame), truth);
     frame = RenderedFrame();
     progress.update(static_cast<size_t>(truth.index + 1));
@@ -56,6 +58,8 @@ RenderSummary render_dataset(Scenario scenario, const RenderRequest& request) {
   summary.segmentation_ms /= n;
   summary.convert_ms /= n;
   summary.subframes = subframes / n;
+  summary.renders = renders / n;
+  summary.field_ms /= n;
   summary.sensor_ms = w.sensor_ms / n;
   summary.encode_write_ms = w.encode_write_ms / n;
   summary.bytes = w.bytes;

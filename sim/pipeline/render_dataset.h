@@ -25,7 +25,9 @@ struct RenderSummary {
   double seconds = 0;
   double physics_ms = 0, color_depth_ms = 0, segmentation_ms = 0, convert_ms = 0;  // per frame
   double sensor_ms = 0, encode_write_ms = 0;  // per frame, on writer threads
-  double subframes = 1;                       // renders per frame (exposure, readout)
+  double subframes = 1;                       // sub-frames per frame (exposure, readout)
+  double renders = 1;                         // colour renders per frame among them
+  double field_ms = 0;                        // per frame, sub-frames by the motion field
   size_t bytes = 0;
   std::string output;
 };

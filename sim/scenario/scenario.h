@@ -123,7 +123,11 @@ struct SensorSpec {
   // each row, the depth and the truth belong to): 0 = instant and global.
   double exposure = 0.0;   // s, each row's integration time
   double readout = 0.0;    // s, first row to last (rolling shutter)
-  int max_subframes = 15;  // renders per frame at most while either is set
+  int max_subframes = 15;  // sub-frames per frame at most while either is set
+  // How the sub-frames are made: "subframes" renders each (the reference),
+  // "field" moves the timestamp's one render along the exact per-pixel
+  // motion (sim/sensor/motion_field.h).
+  std::string motion_blur = "subframes";
   // Depth artefacts (sim/sensor/depth_artefacts.h), 0 = none.
   double flying_pixels = 0.0;  // share of depth-edge pixels given a mixed depth
   double dark_dropout = 0.0;   // chance of no depth on a black surface (none from grey 64)

@@ -285,6 +285,7 @@ const std::initializer_list<const char*> kSensorKeys = {"model",
                                                         "exposure",
                                                         "readout",
                                                         "max_subframes",
+                                                        "motion_blur",
                                                         "flying_pixels",
                                                         "dark_dropout",
                                                         "misregistration",
@@ -358,6 +359,10 @@ void read_sensor_keys(const Fields& f, SensorSpec& s) {
   s.exposure = f.number("exposure", s.exposure, 0.0, 0.5);
   s.readout = f.number("readout", s.readout, 0.0, 0.5);
   s.max_subframes = static_cast<int>(f.number("max_subframes", s.max_subframes, 3, 99));
+  s.motion_blur = f.str("motion_blur", s.motion_blur);
+  if (s.motion_blur != "subframes" && s.motion_blur != "field")
+    fail(f.where(f.node("motion_blur")),
+         "unknown motion_blur '" + printable(s.motion_blur) + "' (expected subframes or field)");
   s.flying_pixels = f.number("flying_pixels", s.flying_pixels, 0.0, 1.0);
   s.dark_dropout = f.number("dark_dropout", s.dark_dropout, 0.0, 1.0);
   s.misregistration = f.vec2("misregistration", s.misregistration);

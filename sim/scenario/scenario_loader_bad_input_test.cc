@@ -110,6 +110,7 @@ TEST(ScenarioBadInput, LightExposureAndColourMistakesAreOneError) {
        ":3: sensor max_exposure = 40.0 ms is longer than a frame (33.3 ms at 30 Hz)"},
       {"{vignetting: 0}", ":3: 'vignetting' = 0.000000 is out of range [0.050000, 1.000000]"},
       {"{demosaic: vng}", ":3: unknown demosaic 'vng' (expected none, bilinear or edge_aware)"},
+      {"{motion_blur: flow}", ":3: unknown motion_blur 'flow' (expected subframes or field)"},
       {"{bayer: rgbg}", ":3: unknown bayer pattern 'rgbg' (expected rggb, grbg, gbrg or bggr)"},
       {"{full_well: 50}",
        ":3: 'full_well' must be 0 (no sensor noise model) or at least 100 electrons"},

@@ -11,6 +11,7 @@
 #include "sim/scene/obstacles.h"
 #include "sim/scene/scene_layout.h"
 #include "sim/sensor/light.h"
+#include "sim/sensor/motion_field.h"
 #include "sim/sensor/shutter.h"
 #include "sim/world/camera_clearance.h"
 
@@ -161,12 +162,21 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
   if (next_ + 1 < frame_count())
     next_earliest = stamps_[next_ + 1].first - stamps_.front().first +
                     1.0 / scenario_.timestamps.rate + frame_instants_range(scenario_).first;
+  // The motion field renders the timestamp only and keeps, per sub-frame,
+  // the camera and every tracked body to move that render by.
+  const bool field = shutter && scenario_.sensor.motion_blur == "field";
+  std::vector<Pose> field_cameras(field ? offsets.size() : 0);
+  std::vector<std::vector<Pose>> field_bodies(field ? offsets.size() : 0);
+  RenderedFrame stamp;  // the render the field moves
   std::vector<cv::Mat> colours;
   RenderedFrame depth_frame;
   bool depth_done = false;
+  size_t subframe = 0;
   for (double offset : instants) {
     auto t0 = std::chrono::steady_clock::now();
-    if (world_time + offset > next_earliest) {
+    // advance_to() ends on the physics step nearest its time, up to half a
+    // step past it: save before that could pass the next frame's start.
+    if (world_time + offset + 0.5 * world_->timestep() > next_earliest) {
       world_->save_checkpoint_before(next_earliest);
       next_earliest = INFINITY;
     }
@@ -183,12 +193,24 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
       if (own_depth && offset == depth_offset_ && !depth_done) {
         render(depth_frame, &r);
         depth_done = true;
-      } else if (offset == 0.0) {
-        render(*frame, &r);
-        colours.push_back(frame->bgr);
       } else {
-        colours.emplace_back();
-        render_colour(colours.back(), &r);
+        if (field) {
+          field_cameras[subframe] = world_camera;
+          tracked_body_poses(field_bodies[subframe]);
+        }
+        if (offset == 0.0) {
+          render(*frame, &r);
+          colours.push_back(frame->bgr);
+          // A later render (the depth camera's) reuses the renderer's buffers.
+          if (field && lens_)
+            stamp = {canvas_.bgr.clone(), canvas_.depth.clone(), canvas_.instance.clone()};
+          else if (field)
+            stamp = {frame->bgr, frame->depth.clone(), frame->instance};
+        } else {
+          colours.emplace_back();
+          if (!field) render_colour(colours.back(), &r);
+        }
+        ++subframe;
       }
       if (timings) {
         timings->render.color_depth_ms += r.color_depth_ms;
@@ -198,13 +220,74 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
     }
     if (offset == 0.0) record_truth(world_camera, t_rgb, t_depth, covered, truth);
   }
+  if (field) {
+    auto t0 = std::chrono::steady_clock::now();
+    synthesise_subframes(stamp, offsets, field_cameras, field_bodies, colours);
+    if (timings)
+      timings->field_ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  }
   if (shutter) frame->bgr = integrate_shutter(colours, offsets, shutter_);
   if (own_depth) frame->depth = depth_frame.depth;
   if (scenario_.sensor.forms_colour())
     truth.capture = expose(frame ? &frame->bgr : nullptr, since_first);
-  if (timings) timings->subframes = static_cast<int>(instants.size());
+  if (timings) {
+    timings->subframes = static_cast<int>(offsets.size());
+    timings->renders = field ? 1 : static_cast<int>(offsets.size());
+  }
   ++next_;
   return true;
+}
+
+void SimulatedSequence::tracked_body_poses(std::vector<Pose>& out) const {
+  out.clear();
+  std::vector<Pose> bodies;
+  for (const Instance* inst : tracked_) {
+    world_->body_poses(*inst, bodies);
+    out.insert(out.end(), bodies.begin(), bodies.end());
+  }
+}
+
+void SimulatedSequence::synthesise_subframes(const RenderedFrame& stamp,
+                                             const std::vector<double>& offsets,
+                                             const std::vector<Pose>& cameras,
+                                             const std::vector<std::vector<Pose>>& bodies,
+                                             std::vector<cv::Mat>& colours) {
+  const size_t at_stamp = std::find(offsets.begin(), offsets.end(), 0.0) - offsets.begin();
+  const Pose& camera = cameras[at_stamp];
+  // Which body each pixel moves with, from the bodies' origins at the stamp.
+  std::vector<uint16_t> body_instance;
+  std::vector<Eigen::Vector3d> body_origin;
+  std::vector<Pose> bodies_one;
+  for (const Instance* inst : tracked_) {
+    world_->body_poses(*inst, bodies_one);
+    body_instance.insert(body_instance.end(), bodies_one.size(), inst->id);
+  }
+  const Pose camera_from_world = camera.inverse();
+  for (const Pose& b : bodies[at_stamp]) body_origin.push_back(camera_from_world * b.translation());
+  const CameraIntrinsics& render_camera = lens_ ? lens_->canvas : scenario_.camera;
+  const cv::Mat body =
+      assign_bodies(stamp.depth, stamp.instance, render_camera, body_instance, body_origin);
+  const FieldSource source = make_field_source(stamp.bgr, stamp.depth, body, render_camera);
+  auto motion_to = [&](size_t k) {
+    return instant_motion(camera, bodies[at_stamp], cameras[k], bodies[k]);
+  };
+  // Kept across frames: fresh pages every frame cost more than the splatting.
+  if (subframe_buffers_.size() < offsets.size()) subframe_buffers_.resize(offsets.size());
+  // Sub-frames are independent of each other: one per worker.
+  cv::parallel_for_(cv::Range(0, static_cast<int>(offsets.size())), [&](const cv::Range& range) {
+    for (int k = range.start; k < range.end; ++k) {
+      if (static_cast<size_t>(k) == at_stamp) continue;
+      if (lens_) {
+        thread_local cv::Mat canvas;
+        synthesise_subframe(source, motion_to(k), canvas);
+        apply_lens_colour(*lens_, canvas, subframe_buffers_[k]);
+      } else {
+        synthesise_subframe(source, motion_to(k), subframe_buffers_[k]);
+      }
+      colours[k] = subframe_buffers_[k];
+    }
+  });
 }
 
 void SimulatedSequence::render(RenderedFrame& out, RenderTimings* timings) {

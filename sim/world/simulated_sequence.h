@@ -44,7 +44,9 @@ struct FrameTruth {
 struct SequenceTimings {
   double physics_ms = 0;
   RenderTimings render;  // summed over the frame's sub-frames
-  int subframes = 1;     // renders of the frame (sim/sensor/shutter.h)
+  int subframes = 1;     // sub-frame instants of the frame (sim/sensor/shutter.h)
+  int renders = 1;       // colour renders among them (1 when the motion field made the rest)
+  double field_ms = 0;   // synthesising sub-frames by the motion field
 };
 
 // The frame timestamps of a scenario: (rgb, depth) pairs (with the
@@ -87,8 +89,9 @@ class SimulatedSequence {
   ClassTable classes_;
   std::unique_ptr<World> world_;
   std::unique_ptr<Renderer> renderer_;
-  std::unique_ptr<LensMapping> lens_;  // null: the render is the image
-  RenderedFrame canvas_;               // the render a lens resamples
+  std::unique_ptr<LensMapping> lens_;      // null: the render is the image
+  RenderedFrame canvas_;                   // the render a lens resamples
+  std::vector<cv::Mat> subframe_buffers_;  // the motion field's sub-frames, reused
   std::unique_ptr<CameraMotion> motion_;
   std::vector<std::pair<double, double>> stamps_;
   std::vector<const Instance*> tracked_;            // pushables and actors
@@ -103,6 +106,15 @@ class SimulatedSequence {
   void render(RenderedFrame& out, RenderTimings* timings);
   void render_colour(cv::Mat& bgr, RenderTimings* timings);
   bool advance(RenderedFrame* frame, FrameTruth& truth, SequenceTimings* timings);
+  // The colour sub-frames at `offsets` by the motion field
+  // (sim/sensor/motion_field.h) from the render at offset 0 (`stamp`, the
+  // canvas when a lens resamples) and the camera and bodies at each offset.
+  void synthesise_subframes(const RenderedFrame& stamp, const std::vector<double>& offsets,
+                            const std::vector<Pose>& cameras,
+                            const std::vector<std::vector<Pose>>& bodies,
+                            std::vector<cv::Mat>& colours);
+  // Every body of the tracked instances now, in one order.
+  void tracked_body_poses(std::vector<Pose>& out) const;
   // Largest image motion (px) expected over the shutter's span at t_rgb.
   double image_motion_over_span(double t_rgb) const;
   void record_truth(const Pose& world_camera, double t_rgb, double t_depth, bool covered,

@@ -34,6 +34,7 @@ class World {
   void set_camera_pose(const Pose& world_camera);
 
   double time() const { return data_->time; }
+  double timestep() const { return model_->opt.timestep; }
   const mjModel* model() const { return model_; }
   mjData* data() { return data_; }
   int camera_id() const { return camera_id_; }
