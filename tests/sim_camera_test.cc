@@ -12,6 +12,8 @@
 #include <fstream>
 #include <iomanip>
 #include <iterator>
+#include <map>
+#include <sstream>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -299,6 +301,45 @@ TEST(SimShutter, TruthIsTheTimestampsAndDatasetsAreByteIdentical) {
   EXPECT_NE(file_text(b + "/calibration.yaml").find("shutter:\n  exposure: 0.02"),
             std::string::npos);
   EXPECT_EQ(file_text(a + "/calibration.yaml").find("shutter:"), std::string::npos);
+}
+
+// Under a rolling shutter, groundtruth_rows.txt gives the camera at sampled
+// rows' instants: each row's time is the frame's plus its offset, and the
+// camera turning at omega has turned omega x that offset from the frame's
+// pose in groundtruth.txt.
+TEST(SimShutter, RowPosesAreTheCameraAtEachRowsInstant) {
+  const double omega = 2.0, readout = 0.03;
+  SmallRender request(turning_scenario(omega, "{model: kinect, readout: 0.03}"), 3, 160, false);
+  const std::string root = render_small(request);
+  std::map<double, Pose> frames;
+  for (const StampedPose& p : read_tum_trajectory(root + "/groundtruth.txt"))
+    frames[p.timestamp] = p.pose;
+  ASSERT_EQ(frames.size(), 3u);
+  std::ifstream in(root + "/groundtruth_rows.txt");
+  ASSERT_TRUE(in.good());
+  std::string line;
+  int samples = 0;
+  double largest_turn = 0;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    double stamp, time, tx, ty, tz, qx, qy, qz, qw;
+    int row;
+    ASSERT_TRUE(fields >> stamp >> row >> time >> tx >> ty >> tz >> qx >> qy >> qz >> qw) << line;
+    ASSERT_EQ(frames.count(stamp), 1u) << line;
+    const int height = 120;  // 160 px wide
+    EXPECT_NEAR(time - stamp, (row / (height - 1.0) - 0.5) * readout, 2e-6) << line;
+    const Pose camera = make_pose(Eigen::Quaterniond(qw, qx, qy, qz), Eigen::Vector3d(tx, ty, tz));
+    const double turn = rotation_angle_between(camera, frames[stamp]);
+    EXPECT_NEAR(turn, omega * std::abs(time - stamp), 1e-4) << line;
+    largest_turn = std::max(largest_turn, turn);
+    ++samples;
+  }
+  EXPECT_EQ(samples, 3 * (sim::kRowPoseIntervals + 1));
+  EXPECT_NEAR(largest_turn, omega * readout / 2, 1e-4);  // first and last rows
+  // A global shutter has no row poses.
+  SmallRender global(turning_scenario(omega, "{model: kinect, exposure: 0.01}"), 3, 160, false);
+  EXPECT_FALSE(fs::exists(render_small(global) + "/groundtruth_rows.txt"));
 }
 
 // The motion field through a lens (sub-frames made on the canvas, then

@@ -36,9 +36,9 @@ const OutputKind& simulator_output_kind() {
       "dataset",
       dataset::kInfoFile,
       {"rgb", "depth", dataset::kLabelFolder, "boxes_yolo", "yolo", "rgb.txt", "depth.txt",
-       "associations.txt", "groundtruth.txt", dataset::kLabelListFile, dataset::kObjectPosesFile,
-       dataset::kBoxesFile, "classes.txt", "calibration.yaml", dataset::kObjectsFile,
-       dataset::kInfoFile, "scenario.yaml", "timestamps.txt"}};
+       "associations.txt", "groundtruth.txt", "groundtruth_rows.txt", dataset::kLabelListFile,
+       dataset::kObjectPosesFile, dataset::kBoxesFile, "classes.txt", "calibration.yaml",
+       dataset::kObjectsFile, dataset::kInfoFile, "scenario.yaml", "timestamps.txt"}};
   return kind;
 }
 
@@ -86,6 +86,9 @@ void DatasetWriter::add(RenderedFrame frame, const FrameTruth& truth) {
   assoc_txt_ += rs + " rgb/" + rs + ".png " + ds + " depth/" + ds + ".png\n";
   label_timestamps_.push_back(truth.rgb_timestamp);
   gt_txt_ += format_tum_pose({truth.rgb_timestamp, truth.camera}) + "\n";
+  for (const RowPose& r : truth.rows)
+    rows_txt_ +=
+        rs + " " + std::to_string(r.row) + " " + format_tum_pose({r.time, r.camera}) + "\n";
   std::vector<bool> moving(instances_.size() + 1, false);
   for (const ObjectState& s : truth.objects) moving[s.id] = s.moving;
   for (dataset::ObjectPoseRecord& r : object_pose_records(truth))
@@ -186,6 +189,13 @@ void DatasetWriter::write_text_files() {
   write("depth.txt", depth_txt_);
   write("associations.txt", assoc_txt_);
   write("groundtruth.txt", gt_txt_);
+  if (!rows_txt_.empty())
+    write("groundtruth_rows.txt",
+          "# rolling shutter ground truth (camera-to-world): the camera when each sampled row\n"
+          "# was exposed (the middle of its exposure), every eighth of the height; rows\n"
+          "# between: interpolate in time. Timing: calibration.yaml's shutter block.\n" +
+              dataset::file_header_line(scenario_.name) +
+              "# frame_timestamp row row_time tx ty tz qx qy qz qw\n" + rows_txt_);
   dataset::write_label_list(root.string(), scenario_.name, label_timestamps_);
   dataset::write_object_poses(root.string(), scenario_.name, object_poses_);
   if (!exposures_.empty()) dataset::write_exposures(root.string(), scenario_.name, exposures_);
@@ -219,7 +229,8 @@ void DatasetWriter::write_text_files() {
     std::ostringstream shutter;
     shutter << "# Colour shutter: the timestamp is the middle of the middle row's exposure;\n"
             << "# row y is exposed (y / (height - 1) - 0.5) x readout later. Depth, labels and\n"
-            << "# groundtruth.txt belong to the timestamp.\n"
+            << "# groundtruth.txt belong to the timestamp; with a readout, groundtruth_rows.txt\n"
+            << "# gives the camera at sampled rows' instants.\n"
             << "shutter:\n  exposure: " << s.exposure << "  # s\n  readout: " << s.readout
             << "  # s, first row to last\n"
             << "  motion_blur: " << s.motion_blur

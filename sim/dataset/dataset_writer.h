@@ -88,6 +88,7 @@ class DatasetWriter {
   WriterTimings totals_;
 
   std::string rgb_txt_, depth_txt_, assoc_txt_, gt_txt_;
+  std::string rows_txt_;  // groundtruth_rows.txt, empty for a global shutter
   // The truth files' records, written by the dataset library at the end.
   std::vector<double> label_timestamps_;
   std::vector<dataset::ObjectPoseRecord> object_poses_;

@@ -342,6 +342,18 @@ void SimulatedSequence::record_truth(const Pose& world_camera, double t_rgb, dou
   truth.depth_timestamp = t_depth;
   truth.camera = dataset_from_world * world_camera;
   truth.covered = covered;
+  truth.rows.clear();
+  if (shutter_.readout > 0) {
+    const int height = scenario_.camera.height;
+    for (int k = 0; k <= kRowPoseIntervals; ++k) {
+      RowPose r;
+      r.row =
+          static_cast<int>(std::lround(static_cast<double>(k) * (height - 1) / kRowPoseIntervals));
+      r.time = t_rgb + shutter_.row_offset(r.row, height);
+      r.camera = dataset_from_world * motion_->pose_at(r.time);
+      truth.rows.push_back(r);
+    }
+  }
   truth.objects.clear();
   std::vector<Pose> bodies;
   double fastest_step = 0.0;

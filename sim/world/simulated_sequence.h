@@ -27,6 +27,18 @@ struct ObjectState {
   double max_rotation_deg = 0.0;
 };
 
+// Under a rolling shutter, the camera when one row was exposed (the middle
+// of that row's exposure), in the dataset frame.
+struct RowPose {
+  int row = 0;
+  double time = 0.0;
+  Pose camera = Pose::Identity();  // T_dataset_camera
+};
+
+// Rows of a rolling-shutter frame given a pose of their own: every eighth of
+// the height, first and last included (rows between: interpolate).
+constexpr int kRowPoseIntervals = 8;
+
 struct FrameTruth {
   int index = 0;
   double rgb_timestamp = 0.0;
@@ -36,6 +48,9 @@ struct FrameTruth {
   // covered_frame()), while the camera and the objects keep their true poses.
   bool covered = false;
   std::vector<ObjectState> objects;  // every pushable and actor instance
+  // With a readout time (not ideal): the camera at sampled rows' instants,
+  // first row first (groundtruth_rows.txt). Empty for a global shutter.
+  std::vector<RowPose> rows;
   // How the colour image was exposed (sim/sensor/colour_pipeline.h): the
   // exposure and gain auto-exposure chose, the light each row saw.
   ColourCapture capture;
