@@ -191,11 +191,13 @@ void DatasetWriter::write_text_files() {
   write("groundtruth.txt", gt_txt_);
   if (!rows_txt_.empty())
     write("groundtruth_rows.txt",
-          "# rolling shutter ground truth (camera-to-world): the camera when each sampled row\n"
-          "# was exposed (the middle of its exposure), every eighth of the height; rows\n"
-          "# between: interpolate in time. Timing: calibration.yaml's shutter block.\n" +
+          "# rolling shutter ground truth (camera-to-world)\n" +
               dataset::file_header_line(scenario_.name) +
-              "# frame_timestamp row row_time tx ty tz qx qy qz qw\n" + rows_txt_);
+              "# the camera when each sampled row was exposed (the middle of its exposure),\n"
+              "# every eighth of the height; rows between: interpolate in time (not a TUM\n"
+              "# trajectory: 11 columns). Timing: calibration.yaml's shutter block.\n"
+              "# frame_timestamp row row_time tx ty tz qx qy qz qw\n" +
+              rows_txt_);
   dataset::write_label_list(root.string(), scenario_.name, label_timestamps_);
   dataset::write_object_poses(root.string(), scenario_.name, object_poses_);
   if (!exposures_.empty()) dataset::write_exposures(root.string(), scenario_.name, exposures_);

@@ -41,6 +41,8 @@ cv::Mat assign_bodies(const cv::Mat& depth, const cv::Mat& instance, const Camer
     fail("motion field", "depth and instance images differ in size or type");
   if (body_instance.size() != body_origin.size())
     fail("motion field", "bodies and their origins differ in number");
+  if (body_instance.size() > static_cast<size_t>(INT16_MAX))
+    fail("motion field", "more bodies than a body map holds (32767)");
   // The bodies of each instance id.
   uint16_t largest = 0;
   for (uint16_t id : body_instance) largest = std::max(largest, id);
@@ -146,6 +148,7 @@ void synthesise_subframe(const FieldSource& source, const InstantMotion& motion,
     nearest[t] =
         std::min(nearest[t], (static_cast<uint64_t>(bits) << 32) | static_cast<uint32_t>(i));
   }
+  if (!out.isContinuous()) out.release();  // a view into a larger image
   out.create(h, w, CV_8UC3);
   out.setTo(cv::Scalar::all(0));
   const uchar* in = source.bgr.ptr<uchar>(0);
@@ -177,7 +180,7 @@ void synthesise_subframe(const FieldSource& source, const InstantMotion& motion,
         consider(y * w + k, x - k);
         break;
       }
-    for (int k = x + 1; k < std::min(w, x + kFillReach); ++k)
+    for (int k = x + 1; k <= std::min(w - 1, x + kFillReach); ++k)
       if (nearest[y * w + k] != kEmpty) {
         consider(y * w + k, k - x);
         break;
@@ -187,7 +190,7 @@ void synthesise_subframe(const FieldSource& source, const InstantMotion& motion,
         consider(k * w + x, y - k);
         break;
       }
-    for (int k = y + 1; k < std::min(h, y + kFillReach); ++k)
+    for (int k = y + 1; k <= std::min(h - 1, y + kFillReach); ++k)
       if (nearest[k * w + x] != kEmpty) {
         consider(k * w + x, k - y);
         break;

@@ -11,7 +11,8 @@
 // ones; a pixel no point
 // reaches (background an actor uncovers, content entering at the border)
 // takes the colour of the farthest of the nearest reached pixels left, right,
-// above and below it. The sub-frames then go
+// above and below it, looking up to 96 px each way (farther: black; the
+// image motion the sub-frames are spaced for is far smaller). The sub-frames then go
 // through integrate_shutter like rendered ones, so the rows' timing is one
 // code. What one render cannot know is the error against the reference:
 // surfaces hidden at the timestamp, and skins blending several bones.

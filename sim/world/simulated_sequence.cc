@@ -205,7 +205,7 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
           if (field && lens_)
             stamp = {canvas_.bgr.clone(), canvas_.depth.clone(), canvas_.instance.clone()};
           else if (field)
-            stamp = {frame->bgr, frame->depth.clone(), frame->instance};
+            stamp = {frame->bgr, frame->depth, frame->instance};
         } else {
           colours.emplace_back();
           if (!field) render_colour(colours.back(), &r);
