@@ -175,26 +175,18 @@ void synthesise_subframe(const FieldSource& source, const InstantMotion& motion,
           (depth == (nearest[from] >> 32) && distance < from_distance))
         from = j, from_distance = distance;
     };
-    for (int k = x - 1; k >= std::max(0, x - kFillReach); --k)
-      if (nearest[y * w + k] != kEmpty) {
-        consider(y * w + k, x - k);
-        break;
-      }
-    for (int k = x + 1; k <= std::min(w - 1, x + kFillReach); ++k)
-      if (nearest[y * w + k] != kEmpty) {
-        consider(y * w + k, k - x);
-        break;
-      }
-    for (int k = y - 1; k >= std::max(0, y - kFillReach); --k)
-      if (nearest[k * w + x] != kEmpty) {
-        consider(k * w + x, y - k);
-        break;
-      }
-    for (int k = y + 1; k <= std::min(h - 1, y + kFillReach); ++k)
-      if (nearest[k * w + x] != kEmpty) {
-        consider(k * w + x, k - y);
-        break;
-      }
+    // The first reached pixel `step` apart, at most kFillReach steps away.
+    auto look = [&](int step, int steps) {
+      for (int k = 1, j = t + step; k <= std::min(steps, kFillReach); ++k, j += step)
+        if (nearest[j] != kEmpty) {
+          consider(j, k);
+          return;
+        }
+    };
+    look(-1, x);
+    look(1, w - 1 - x);
+    look(-w, y);
+    look(w, h - 1 - y);
     if (from >= 0) fills.emplace_back(t, from);  // none near: stays black
   }
   for (const auto& [t, from] : fills)

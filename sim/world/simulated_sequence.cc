@@ -109,8 +109,11 @@ SimulatedSequence::SimulatedSequence(const Scenario& scenario, GlBackend backend
     depth_offset_ = scenario_.sensor.depth_offset;
   }
   previous_bodies_.resize(tracked_.size());
-  for (size_t i = 0; i < tracked_.size(); ++i)
+  for (size_t i = 0; i < tracked_.size(); ++i) {
     world_->body_poses(*tracked_[i], previous_bodies_[i]);
+    tracked_body_instance_.insert(tracked_body_instance_.end(), previous_bodies_[i].size(),
+                                  tracked_[i]->id);
+  }
 }
 
 bool SimulatedSequence::next(RenderedFrame& frame, FrameTruth& truth, SequenceTimings* timings) {
@@ -256,18 +259,12 @@ void SimulatedSequence::synthesise_subframes(const RenderedFrame& stamp,
   const size_t at_stamp = std::find(offsets.begin(), offsets.end(), 0.0) - offsets.begin();
   const Pose& camera = cameras[at_stamp];
   // Which body each pixel moves with, from the bodies' origins at the stamp.
-  std::vector<uint16_t> body_instance;
   std::vector<Eigen::Vector3d> body_origin;
-  std::vector<Pose> bodies_one;
-  for (const Instance* inst : tracked_) {
-    world_->body_poses(*inst, bodies_one);
-    body_instance.insert(body_instance.end(), bodies_one.size(), inst->id);
-  }
   const Pose camera_from_world = camera.inverse();
   for (const Pose& b : bodies[at_stamp]) body_origin.push_back(camera_from_world * b.translation());
   const CameraIntrinsics& render_camera = lens_ ? lens_->canvas : scenario_.camera;
-  const cv::Mat body =
-      assign_bodies(stamp.depth, stamp.instance, render_camera, body_instance, body_origin);
+  const cv::Mat body = assign_bodies(stamp.depth, stamp.instance, render_camera,
+                                     tracked_body_instance_, body_origin);
   const FieldSource source = make_field_source(stamp.bgr, stamp.depth, body, render_camera);
   auto motion_to = [&](size_t k) {
     return instant_motion(camera, bodies[at_stamp], cameras[k], bodies[k]);

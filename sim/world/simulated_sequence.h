@@ -111,6 +111,7 @@ class SimulatedSequence {
   std::vector<std::pair<double, double>> stamps_;
   std::vector<const Instance*> tracked_;            // pushables and actors
   std::vector<std::vector<Pose>> previous_bodies_;  // per tracked instance
+  std::vector<uint16_t> tracked_body_instance_;     // instance id of each tracked body, in order
   int next_ = 0;
   ShutterTiming shutter_;  // inactive for an ideal sensor
   ExposureControl exposure_control_;
