@@ -7,13 +7,14 @@ function(depot_library name)
   target_link_libraries(${name} PUBLIC ${ARG_DEPS})
 endfunction()
 
-# depot_test(NAME SOURCES ... DEPS ... [LABELS ...]): a GoogleTest binary beside
-# the code it tests, registered with CTest.
+# depot_test(NAME SOURCES ... DEPS ... [LABELS ...] [SERIAL]): a GoogleTest
+# binary beside the code it tests, registered with CTest. SERIAL: its cases run
+# with no other test beside them (they observe machine-wide state).
 function(depot_test name)
   if(NOT DEPOT_BUILD_TESTS)
     return()
   endif()
-  cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "SERIAL" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_compile_options(${name} PRIVATE ${DEPOT_WARNINGS})
   target_compile_definitions(${name} PRIVATE
@@ -31,6 +32,9 @@ function(depot_test name)
   set(_props TIMEOUT ${ARG_TIMEOUT})
   if(ARG_LABELS)
     list(APPEND _props LABELS "${ARG_LABELS}")
+  endif()
+  if(ARG_SERIAL)
+    list(APPEND _props RUN_SERIAL TRUE)
   endif()
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES ${_props})
 endfunction()
