@@ -49,6 +49,8 @@ struct Source {
   std::string where(const YAML::Node& n) const {
     for (const auto& [node, option] : overrides)
       if (node.is(n)) return option;
+    // A map made by --set alone has no line either.
+    if (n.Mark().is_null()) return file;
     return file + ":" + std::to_string(n.Mark().line + 1);
   }
 };
@@ -60,7 +62,9 @@ class Fields {
     if (!node.IsMap()) fail(where(node), what + " must be a map");
   }
 
-  std::string where(const YAML::Node& n) const { return source_.where(n); }
+  // A key this map lacks (its value came from a sensor profile or a
+  // default) is placed at the map itself.
+  std::string where(const YAML::Node& n) const { return source_.where(n ? n : node_); }
   std::string where() const { return where(node_); }
 
   void allow_only(std::initializer_list<const char*> keys) const {

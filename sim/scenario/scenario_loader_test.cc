@@ -106,5 +106,19 @@ TEST(ScenarioSensorProfile, ShippedProfilesGiveTheirCamerasValues) {
   EXPECT_DOUBLE_EQ(d435.sensor.colour.full_well, 4300);
 }
 
+// A check between a profile's key and the scenario's own names the scenario's
+// setting and the problem (it once failed inside yaml-cpp: "invalid node",
+// looking up the line of a key the scenario's sensor map does not hold).
+TEST(ScenarioSensorProfile, AConflictWithTheProfileIsOneClearError) {
+  const std::string error = error_of([] {
+    load_scenario(kWalking, {{"sensor.profile", "kinect_v1"}, {"sensor.max_exposure", "0.008"}});
+  });
+  EXPECT_NE(error.find("sensor exposure = 0.015000 s is longer than max_exposure = 0.008000 s"),
+            std::string::npos)
+      << error;
+  EXPECT_EQ(error.find("invalid node"), std::string::npos) << error;
+  EXPECT_EQ(error.find(".yaml:0"), std::string::npos) << "no line 0: " << error;
+}
+
 }  // namespace
 }  // namespace depot::sim

@@ -3,7 +3,9 @@
 // also given as ratios to the raw MuJoCo RGB+depth render measured in the
 // same run, so they compare across machines. Then both actor styles end to
 // end (mesh as a ratio to primitive, measured in the same run), the colour
-// pipeline's stages (as ratios to the additive noise it replaces), and the
+// pipeline's stages (as ratios to the additive noise it replaces), the
+// scenario's sensor effect by effect end to end (as ratios to the exact
+// camera), and the
 // resident memory of a long sequence, early and at its end.
 #include <unistd.h>
 
@@ -115,6 +117,47 @@ void colour_pipeline_costs(const depot::sim::Scenario& scenario, int frames) {
   }
 }
 
+// End to end with the scenario's sensor built up effect by effect, from the
+// exact camera: what each effect of a profile (kinect_v1 on the shipped
+// scenarios) costs, as ratios to the exact camera in the same run.
+void sensor_effect_costs(const depot::sim::Scenario& scenario, int writers) {
+  const depot::sim::SensorSpec full = scenario.sensor;
+  std::vector<std::pair<std::string, depot::sim::SensorSpec>> steps;
+  depot::sim::SensorSpec s = full;
+  s.ideal = true;
+  steps.emplace_back("exact camera (--ideal, baseline)", s);
+  s = full;
+  s.exposure = s.readout = 0;
+  s.exposure_control = {};
+  s.light = {};
+  s.colour = {};
+  s.lens = {};
+  steps.emplace_back("depth model + additive noise", s);
+  s.exposure_control = full.exposure_control;
+  s.light = full.light;
+  s.colour = full.colour;
+  steps.emplace_back("+ light, auto-exposure, colour pipe", s);
+  s.lens = full.lens;
+  steps.emplace_back("+ lens distortion", s);
+  s.exposure = full.exposure;
+  s.readout = full.readout;
+  s.motion_blur = "field";
+  steps.emplace_back("+ blur, rolling shutter (field)", s);
+  s.motion_blur = "subframes";
+  steps.emplace_back("  (by sub-frame renders instead)", s);
+  std::printf("sensor effects end to end (%s's sensor: exposure %.3f s%s, readout %.3f s)\n",
+              scenario.name.c_str(), full.exposure, full.exposure_control.automatic ? " auto" : "",
+              full.readout);
+  double baseline = 0;
+  for (const auto& [name, spec] : steps) {
+    depot::sim::Scenario variant = scenario;
+    variant.sensor = spec;
+    const double fps = end_to_end_fps(variant, writers, nullptr);
+    if (baseline == 0) baseline = fps;
+    std::printf("  %-36s %6.1f fps %6.2fx exact camera\n", name.c_str(), fps, fps / baseline);
+  }
+}
+
 void row(const char* stage, double ms_per_frame, double baseline_ms) {
   std::printf("  %-34s %8.2f ms/frame %8.1f fps %8.2fx\n", stage, ms_per_frame,
               1000.0 / ms_per_frame, baseline_ms / ms_per_frame);
@@ -178,9 +221,9 @@ int main(int argc, char** argv) {
     double mb_written = 0;
     const double fps = end_to_end_fps(scenario, writers, &mb_written);
 
-    std::printf("depot_sim_bench: %s, %d frames at %dx%d, Kinect sensor model, %d writer threads\n",
-                scenario.name.c_str(), frames, scenario.camera.width, scenario.camera.height,
-                writers);
+    std::printf(
+        "depot_sim_bench: %s, %d frames at %dx%d, the scenario's sensor, %d writer threads\n",
+        scenario.name.c_str(), frames, scenario.camera.width, scenario.camera.height, writers);
     std::printf("  %-34s %17s %12s %9s\n", "stage (single-threaded)", "", "", "vs render");
     row("physics + actor posing", physics / n, base);
     row("render RGB + depth (baseline)", base, base);
@@ -198,6 +241,7 @@ int main(int argc, char** argv) {
                 mb_written);
 
     colour_pipeline_costs(scenario, std::min(frames, 60));
+    sensor_effect_costs(scenario, writers);
 
     // Actor styles side by side, same scenario and frames.
     std::printf("actor styles (scenario's style: %s)\n", scenario.actors_style.c_str());
