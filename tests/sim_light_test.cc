@@ -3,8 +3,10 @@
 // the old light), then auto-exposure brings the image back to its
 // brightness with its time constant, exposure first and gain once the
 // exposure is at its longest; exposures.txt states what it chose. The
-// colour pipeline's stages all on still give byte-identical datasets.
+// colour pipeline's stages all on still give byte-identical datasets. The
+// actors cast shadows where `shadows` is on.
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -75,6 +77,52 @@ TEST(SimLight, AutoExposureRecoversFromALightDropWithItsLag) {
   EXPECT_NEAR(mean_grey(d, 44), target, metering);
   const std::string calibration = file_text(root + "/calibration.yaml");
   EXPECT_NE(calibration.find("  auto_exposure: true\n"), std::string::npos) << calibration;
+}
+
+// Shadows (`shadows: true`): MuJoCo's shadow maps for the depot's lights, so
+// the moving actors (and pushed chairs) darken what they stand over. The
+// same frame is rendered with and without its actors: with shadows off, the
+// static pixels neither render covers are the same (lighting has no
+// occlusion); with shadows on, the actors' shadows darken some of them, and
+// no pixel gets lighter than it is without the actors.
+TEST(SimLight, ShadowsOfTheActorsDarkenWhatTheyStandOver) {
+  const int frames = 12;
+  auto render = [&](bool shadows, bool actors) {
+    SmallRender r("depot_walking_xyz", frames, 160, true, 1);
+    r.set = {{"shadows", shadows ? "true" : "false"}};
+    if (!actors) r.set.emplace_back("actors", "[]");
+    return read_dataset(render_small(r));
+  };
+  struct Change {
+    int static_pixels = 0, darker = 0, lighter = 0;
+  };
+  auto compare = [&](const Dataset& with, const Dataset& without) {
+    Change c;
+    const size_t last = frames - 1;
+    cv::Mat a, b;
+    cv::cvtColor(with.rgb(last), a, cv::COLOR_BGR2GRAY);
+    cv::cvtColor(without.rgb(last), b, cv::COLOR_BGR2GRAY);
+    const cv::Mat labels = with.labels_image(last), bare = without.labels_image(last);
+    for (int y = 0; y < a.rows; ++y)
+      for (int x = 0; x < a.cols; ++x) {
+        // Pixels of an actor (or chair) in either render are not static.
+        if (labels.at<uint16_t>(y, x) != bare.at<uint16_t>(y, x)) continue;
+        ++c.static_pixels;
+        const int d = a.at<uchar>(y, x) - b.at<uchar>(y, x);
+        c.darker += d < -8;
+        c.lighter += d > 2;
+      }
+    return c;
+  };
+  const Change off = compare(render(false, true), render(false, false));
+  const Change on = compare(render(true, true), render(true, false));
+  std::printf("static pixels %d: shadows off %d darker, %d lighter; on %d darker, %d lighter\n",
+              on.static_pixels, off.darker, off.lighter, on.darker, on.lighter);
+  ASSERT_GT(on.static_pixels, 5000);
+  EXPECT_EQ(off.darker, 0);
+  EXPECT_EQ(off.lighter, 0);
+  EXPECT_GT(on.darker, on.static_pixels / 100) << "the actors cast no visible shadow";
+  EXPECT_LT(on.lighter, on.static_pixels / 1000) << "a shadow only takes light away";
 }
 
 TEST(SimLight, EveryStageOnGivesByteIdenticalDatasetsAndTheTruthStays) {
