@@ -89,6 +89,23 @@ TEST(NoDataLost, OverwriteReplacesADatasetButNotAUserFileInIt) {
   EXPECT_TRUE(fs::exists(data + "/rgb"));
 }
 
+// Every file a render can write counts as depot's: a dataset with them all
+// (the shutter's per-row truth, the exposures of a formed colour image, the
+// YOLO set) is replaced by --overwrite. exposures.txt was once missing from
+// that list, so such a dataset could not be re-rendered in place.
+TEST(NoDataLost, OverwriteReplacesADatasetWithEveryOptionalFile) {
+  const std::string data = temp_path("every_file");
+  const std::string render =
+      "sim render depot_static --frames 2 --width 64 -q --yolo --set sensor.profile=kinect_v1 -o " +
+      data;
+  const DepotResult first = depot(render);
+  ASSERT_EQ(first.code, 0) << first.output;
+  for (const char* file : {"exposures.txt", "groundtruth_rows.txt", "yolo", "boxes_yolo"})
+    ASSERT_TRUE(fs::exists(fs::path(data) / file)) << file;
+  const DepotResult again = depot(render + " --overwrite");
+  EXPECT_EQ(again.code, 0) << again.output;
+}
+
 // 3. A render killed with SIGKILL leaves OUT.partial-PID; the next run to
 // the same OUT removes it, but never the partial folder of a live process.
 TEST(NoDataLost, NextRunRemovesThePartialFolderOfAKilledRender) {

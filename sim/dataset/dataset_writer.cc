@@ -32,13 +32,17 @@ const size_t kMaxQueued = 6;
 }  // namespace
 
 const OutputKind& simulator_output_kind() {
-  static const OutputKind kind{
-      "dataset",
-      dataset::kInfoFile,
-      {"rgb", "depth", dataset::kLabelFolder, "boxes_yolo", "yolo", "rgb.txt", "depth.txt",
-       "associations.txt", "groundtruth.txt", "groundtruth_rows.txt", dataset::kLabelListFile,
-       dataset::kObjectPosesFile, dataset::kBoxesFile, "classes.txt", "calibration.yaml",
-       dataset::kObjectsFile, dataset::kInfoFile, "scenario.yaml", "timestamps.txt"}};
+  // Every top-level entry a render can write (--overwrite replaces only these).
+  static const OutputKind kind = [] {
+    OutputKind k{"dataset", dataset::kInfoFile, {"rgb", "depth", dataset::kLabelFolder, "yolo"}};
+    for (const char* file :
+         {"boxes_yolo", "rgb.txt", "depth.txt", "associations.txt", "groundtruth.txt",
+          "groundtruth_rows.txt", "classes.txt", "calibration.yaml", "scenario.yaml",
+          "timestamps.txt", dataset::kLabelListFile, dataset::kObjectPosesFile, dataset::kBoxesFile,
+          dataset::kObjectsFile, dataset::kInfoFile, dataset::kExposuresFile})
+      k.entries.push_back(file);
+    return k;
+  }();
   return kind;
 }
 

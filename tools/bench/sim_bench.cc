@@ -22,6 +22,7 @@
 #include "common/error.h"
 #include "common/png_codec.h"
 #include "common/rng.h"
+#include "common/yaml_overrides.h"
 #include "sim/pipeline/render_dataset.h"
 #include "sim/scenario/scenario_loader.h"
 #include "sim/sensor/colour_pipeline.h"
@@ -83,8 +84,12 @@ void colour_pipeline_costs(const depot::sim::Scenario& scenario, int frames) {
   depot::sim::FrameTruth truth;
   while (static_cast<int>(images.size()) < frames && sequence.next(frame, truth))
     images.push_back(frame.bgr.clone());
+  // From the plain Kinect model (whatever profile the scenario names).
   depot::sim::SensorSpec sensor = scenario.sensor;
   sensor.ideal = false;
+  sensor.light = {};
+  sensor.exposure_control = {};
+  sensor.colour = {};
   std::vector<std::pair<std::string, depot::sim::SensorSpec>> steps;
   steps.emplace_back("additive rgb_noise (baseline)", sensor);
   sensor.light.level = 0.8;  // the pipeline runs from here on
@@ -133,16 +138,17 @@ void sensor_effect_costs(const depot::sim::Scenario& scenario, int writers) {
   s.colour = {};
   s.lens = {};
   steps.emplace_back("depth model + additive noise", s);
-  s.exposure_control = full.exposure_control;
   s.light = full.light;
   s.colour = full.colour;
-  steps.emplace_back("+ light, auto-exposure, colour pipe", s);
+  steps.emplace_back("+ light, colour pipeline", s);
   s.lens = full.lens;
   steps.emplace_back("+ lens distortion", s);
+  // Auto-exposure sets the shutter's exposure: it comes with the blur.
+  s.exposure_control = full.exposure_control;
   s.exposure = full.exposure;
   s.readout = full.readout;
   s.motion_blur = "field";
-  steps.emplace_back("+ blur, rolling shutter (field)", s);
+  steps.emplace_back("+ exposure, rolling shutter (field)", s);
   s.motion_blur = "subframes";
   steps.emplace_back("  (by sub-frame renders instead)", s);
   s.motion_blur = full.motion_blur;
@@ -181,7 +187,9 @@ int main(int argc, char** argv) {
   int frames = 150;
   int writers = 2;
   int memory_frames = 1800;
+  std::vector<std::string> sets;
   app.add_option("--scenario", scenario_path, "Scenario YAML");
+  app.add_option("--set", sets, "Scenario override KEY=VALUE, as `depot sim render --set`");
   app.add_option("--memory-frames", memory_frames,
                  "Frames of the memory run per actor style (0: skip it)")
       ->check(CLI::Range(0, 100000));
@@ -190,7 +198,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 32));
   CLI11_PARSE(app, argc, argv);
   try {
-    depot::sim::Scenario scenario = depot::sim::load_scenario(scenario_path);
+    std::vector<depot::YamlOverride> overrides;
+    for (const std::string& text : sets)
+      overrides.push_back(depot::parse_yaml_override(text, "--set"));
+    depot::sim::Scenario scenario = depot::sim::load_scenario(scenario_path, overrides);
     scenario.frames = frames;
 
     // Stages, single-threaded, on the same frames.
