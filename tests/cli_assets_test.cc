@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/cli_checks.h"
 #include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
 
@@ -45,11 +46,7 @@ void expect_asset_failure(const std::string& catalog, const std::vector<std::str
       "sim render depot_walking_xyz --frames 2 --width 64 --set actors_style=mesh"
       " --set asset_catalog=" +
       catalog + " -q -o " + out);
-  EXPECT_NE(r.code, 0) << r.output;
-  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
-  EXPECT_EQ(r.output.rfind("depot: error: ", 0), 0u) << r.output;
-  for (const auto& n : needles)
-    EXPECT_NE(r.output.find(n), std::string::npos) << n << "\n" << r.output;
+  expect_one_error_line(r, needles);
   EXPECT_FALSE(fs::exists(out)) << "no dataset on failure";
   for (const auto& e : fs::directory_iterator(fs::path(out).parent_path()))
     EXPECT_EQ(e.path().filename().string().find(fs::path(out).filename().string() + ".partial"),

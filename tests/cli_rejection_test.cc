@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/support/cli_checks.h"
 #include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
 
@@ -196,10 +197,7 @@ TEST(CliRejection, BadInputIsOneErrorLineAndNoReport) {
     const std::string file = temp_path("bad") + ".csv", json = temp_path("bad") + ".json";
     std::ofstream(file) << text;
     const DepotResult r = depot("eval rejection " + dataset + " " + file + " --json " + json);
-    EXPECT_NE(r.code, 0) << r.output;
-    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
-    EXPECT_EQ(r.output.rfind("depot: error: ", 0), 0u) << r.output;
-    EXPECT_NE(r.output.find(needle), std::string::npos) << r.output;
+    expect_one_error_line(r, needle);
     EXPECT_FALSE(fs::exists(json)) << "no report on failure";
   };
   const std::string header = "timestamp,x,y,kept\n", good = t + ",10,10,1\n";

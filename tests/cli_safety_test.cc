@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "dataset/dataset_info.h"
+#include "tests/support/cli_checks.h"
 #include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
 
@@ -33,13 +34,6 @@ std::string user_folder(const std::string& tag) {
   fs::create_directories(dir);
   std::ofstream(dir + "/notes.txt") << "my notes";
   return dir;
-}
-
-void expect_one_error_line(const DepotResult& r, const std::string& needle) {
-  EXPECT_NE(r.code, 0) << r.output;
-  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
-  EXPECT_EQ(r.output.rfind("depot: error: ", 0), 0u) << r.output;
-  EXPECT_NE(r.output.find(needle), std::string::npos) << r.output;
 }
 
 const char* const kTinyRender = "sim render depot_static --frames 2 --width 64 -q";

@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "tests/support/cli_checks.h"
 #include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
 
@@ -25,10 +26,7 @@ std::string scene_lines() {
 void expect_clean_failure(const std::string& args, const std::string& out,
                           const std::string& needle) {
   DepotResult r = depot(args + " -o " + out + " -q");
-  EXPECT_NE(r.code, 0) << r.output;
-  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
-  EXPECT_EQ(r.output.rfind("depot: error: ", 0), 0u) << r.output;
-  EXPECT_NE(r.output.find(needle), std::string::npos) << r.output;
+  expect_one_error_line(r, needle);
   EXPECT_FALSE(fs::exists(out)) << "no output on failure";
   for (const auto& e : fs::directory_iterator(fs::path(out).parent_path()))
     EXPECT_EQ(e.path().string().find(fs::path(out).filename().string() + ".partial"),
@@ -66,9 +64,7 @@ TEST(CliSim, UnwritableOutput) {
   std::string file = temp_path("plainfile");
   std::ofstream(file) << "x";
   DepotResult r = depot("sim render depot_static --frames 2 --width 64 -q -o " + file + "/dataset");
-  EXPECT_NE(r.code, 0);
-  EXPECT_EQ(r.output.rfind("depot: error: ", 0), 0u) << r.output;
-  EXPECT_NE(r.output.find(file), std::string::npos) << r.output;
+  expect_one_error_line(r, file);
 }
 
 TEST(CliSim, OutOfRangeParameter) {

@@ -12,6 +12,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "common/tum_io.h"
+#include "tests/support/cli_checks.h"
 #include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
 
@@ -33,20 +34,10 @@ std::string read_text(const std::string& path) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-void expect_one_error_line(const DepotResult& r, const std::string& needle) {
-  EXPECT_NE(r.code, 0) << r.output;
-  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
-  EXPECT_EQ(r.output.rfind("depot: error: ", 0), 0u) << r.output;
-  EXPECT_NE(r.output.find(needle), std::string::npos) << r.output;
-}
-
 void expect_error(const std::string& dataset, const std::string& needle) {
   const std::string out = temp_path("traj") + ".txt";
   DepotResult r = depot("slam run " + dataset + " -o " + out + " -q");
-  EXPECT_NE(r.code, 0) << r.output;
-  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
-  EXPECT_EQ(r.output.rfind("depot: error: ", 0), 0u) << r.output;
-  EXPECT_NE(r.output.find(needle), std::string::npos) << r.output;
+  expect_one_error_line(r, needle);
   EXPECT_FALSE(fs::exists(out)) << "no trajectory on failure";
   EXPECT_FALSE(fs::exists(out.substr(0, out.size() - 4) + ".states.txt")) << "no states either";
 }

@@ -13,6 +13,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/support/cli_checks.h"
 #include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
 
@@ -30,13 +31,6 @@ std::string read_text(const std::string& path) {
 
 void write_text(const std::string& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
-}
-
-void expect_one_error_line(const DepotResult& r, int code, const std::string& needle) {
-  EXPECT_EQ(r.code, code) << r.output;
-  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
-  EXPECT_THAT(r.output, StartsWith("depot: error: "));
-  EXPECT_THAT(r.output, HasSubstr(needle));
 }
 
 const std::string& tiny_static() {
@@ -91,7 +85,7 @@ TEST(OneFileOneOutput, CollidingPathsAreAUsageErrorAndTouchNothing) {
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.args);
-    expect_one_error_line(depot(c.args), 2, c.needle);
+    expect_one_error_line(depot(c.args), c.needle, 2);
   }
   for (const char* name : {"a.txt", "c.txt", "e.txt", "g.txt", "real/t.txt", "h1.txt"})
     EXPECT_EQ(read_text(dir + "/" + name), mine) << name;
@@ -107,20 +101,22 @@ TEST(CloudsAreChecked, ACutOrShortPlyIsOneErrorLine) {
   const std::string eval = " --dataset " + tiny_static() + " --trajectory " + tiny_static() +
                            "/groundtruth.txt -q --json " + dir + "/score.json";
   write_text(dir + "/cut.ply", binary_cloud(1000).substr(0, 3000));
-  expect_one_error_line(depot("eval cloud " + dir + "/cut.ply" + eval), 1,
+  expect_one_error_line(depot("eval cloud " + dir + "/cut.ply" + eval),
                         "cut.ply: is shorter than its header declares: element 'vertex' ends at "
-                        "row 240 of 1000");
+                        "row 240 of 1000",
+                        1);
   write_text(dir + "/rows.ply",
              "ply\nformat ascii 1.0\nelement vertex 100\nproperty float x\nproperty float y\n"
              "property float z\nend_header\n0 1 2\n1 1 2\n");
-  expect_one_error_line(depot("eval cloud " + dir + "/rows.ply" + eval), 1,
+  expect_one_error_line(depot("eval cloud " + dir + "/rows.ply" + eval),
                         "rows.ply: is shorter than its header declares: element 'vertex' ends at "
-                        "row 2 of 100");
+                        "row 2 of 100",
+                        1);
   // Item 14: --static must be a static render of the dataset, not the dataset.
   write_text(dir + "/whole.ply", binary_cloud(1000));
   expect_one_error_line(
-      depot("eval cloud " + dir + "/whole.ply" + eval + " --static " + tiny_static()), 1,
-      "is not a static render of " + tiny_static() + ": its dynamic_load is 1");
+      depot("eval cloud " + dir + "/whole.ply" + eval + " --static " + tiny_static()),
+      "is not a static render of " + tiny_static() + ": its dynamic_load is 1", 1);
   EXPECT_FALSE(fs::exists(dir + "/score.json"));
 }
 
@@ -154,7 +150,7 @@ TEST(DenseMaps, TheDefaultMaskFollowsTheMode) {
   EXPECT_GT(fs::file_size(out + ".ply"), 200u);
   expect_one_error_line(depot("slam run " + data + " -q -o " + out + "2.txt --dense-map " + out +
                               "2.ply --dense-mask rejection"),
-                        2, "--dense-mask rejection: mode orb leaves no moving mask");
+                        "--dense-mask rejection: mode orb leaves no moving mask", 2);
   EXPECT_FALSE(fs::exists(out + "2.ply"));
 }
 
@@ -179,7 +175,7 @@ TEST(Localisation, AForeignMapSaysNoFrameRelocalised) {
   const std::string out = temp_path("foreign") + ".txt";
   expect_one_error_line(
       depot("slam run " + elsewhere + " -q -o " + out + " --load-map " + map + " --localise-only"),
-      1, "no frame relocalised in the loaded map " + map);
+      "no frame relocalised in the loaded map " + map, 1);
   EXPECT_FALSE(fs::exists(out));
 }
 
