@@ -4,7 +4,8 @@
 // brightness with its time constant, exposure first and gain once the
 // exposure is at its longest; exposures.txt states what it chose. The
 // colour pipeline's stages all on still give byte-identical datasets. The
-// actors cast shadows where `shadows` is on.
+// actors cast shadows where `shadows` is on; a lamp switched off darkens
+// what it lit.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -16,6 +17,7 @@
 
 #include "dataset/exposures.h"
 #include "sim/sensor/auto_exposure.h"
+#include "tests/support/cli_checks.h"
 #include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
 
@@ -123,6 +125,47 @@ TEST(SimLight, ShadowsOfTheActorsDarkenWhatTheyStandOver) {
   EXPECT_EQ(off.lighter, 0);
   EXPECT_GT(on.darker, on.static_pixels / 100) << "the actors cast no visible shadow";
   EXPECT_LT(on.lighter, on.static_pixels / 1000) << "a shadow only takes light away";
+}
+
+// A lamp switched off (`lamps`): the scene is lit without that ceiling light
+// from its event on. Frames before it are byte-equal to a render without the
+// lamp, frames after are darker where it lit and nowhere lighter; depth and
+// labels never change. Two lamps on one light are one error line.
+TEST(SimLight, ALampSwitchedOffDarkensWhatItLitAndNothingElse) {
+  const int frames = 10;  // walking_xyz's stamps: frame 9 is 0.30 s after frame 0
+  auto render = [&](bool lamp) {
+    SmallRender r("depot_walking_xyz", frames, 160, true, 1);
+    // The ceiling light ahead of the camera, off from 0.15 s.
+    if (lamp) r.set = {{"lamps", "[{near: [0.2, 2.8], events: [[0.15, 1], [0.15, 0]]}]"}};
+    return read_dataset(render_small(r));
+  };
+  const Dataset lit = render(false), dark = render(true);
+  ASSERT_EQ(lit.frames.size(), static_cast<size_t>(frames));
+  ASSERT_EQ(dark.frames.size(), static_cast<size_t>(frames));
+  for (int i = 0; i < frames; ++i) {
+    EXPECT_EQ(cv::norm(lit.depth_metres(i), dark.depth_metres(i), cv::NORM_INF), 0.0) << i;
+    EXPECT_EQ(cv::norm(lit.labels_image(i), dark.labels_image(i), cv::NORM_INF), 0.0) << i;
+  }
+  EXPECT_EQ(cv::norm(lit.rgb(0), dark.rgb(0), cv::NORM_INF), 0.0) << "before the event";
+  cv::Mat before, after;
+  cv::cvtColor(lit.rgb(frames - 1), before, cv::COLOR_BGR2GRAY);
+  cv::cvtColor(dark.rgb(frames - 1), after, cv::COLOR_BGR2GRAY);
+  cv::Mat difference;
+  cv::subtract(before, after, difference, cv::noArray(), CV_16S);
+  double least = 0, most = 0;
+  cv::minMaxLoc(difference, &least, &most);
+  const double darker_share = cv::countNonZero(difference > 8) / double(difference.total());
+  std::printf("lamp off: mean grey %.1f -> %.1f, %.1f %% of pixels darker by > 8, most %.0f\n",
+              cv::mean(before)[0], cv::mean(after)[0], 100 * darker_share, most);
+  EXPECT_GT(darker_share, 0.2) << "the lamp lit the view";
+  EXPECT_GE(least, -1.0) << "switching a lamp off lights nothing";
+  EXPECT_GT(cv::mean(before)[0] - cv::mean(after)[0], 5.0);
+
+  const DepotResult twice =
+      depot("sim render depot_static --frames 1 --width 64 -q -o " + temp_path("two_lamps") +
+            " --set 'lamps=[{near: [0, 3], events: [[0, 0]]}, {near: [0.4, 3.2], events: [[0, "
+            "0]]}]'");
+  expect_one_error_line(twice, "lamps 1 and 2 both pick the ceiling light at (0.000000, 3.000000)");
 }
 
 TEST(SimLight, EveryStageOnGivesByteIdenticalDatasetsAndTheTruthStays) {

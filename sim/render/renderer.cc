@@ -1,6 +1,7 @@
 #include "sim/render/renderer.h"
 
 #include <chrono>
+#include <cmath>
 
 #include "common/error.h"
 
@@ -64,12 +65,42 @@ void Renderer::apply_intrinsics() {
   }
 }
 
+void Renderer::apply_light_scales(const mjData* data) {
+  if (light_scales_.empty()) return;
+  if (static_cast<int>(light_scales_.size()) != model_->nlight)
+    fail("renderer", "light scales for " + std::to_string(light_scales_.size()) +
+                         " lights, the model has " + std::to_string(model_->nlight));
+  // mjv_updateScene copies the model's lights (after the headlight, if on):
+  // each is found by its world position and direction.
+  for (int i = 0; i < model_->nlight; ++i) {
+    if (light_scales_[i] == 1.0f) continue;
+    const mjtNum* pos = data->light_xpos + 3 * i;
+    const mjtNum* dir = data->light_xdir + 3 * i;
+    mjvLight* found = nullptr;
+    for (int j = 0; j < scene_.nlight && !found; ++j) {
+      const mjvLight& l = scene_.lights[j];
+      if (l.headlight) continue;
+      bool same = true;
+      for (int k = 0; k < 3; ++k)
+        same = same && std::abs(l.pos[k] - pos[k]) < 1e-5 && std::abs(l.dir[k] - dir[k]) < 1e-5;
+      if (same) found = &scene_.lights[j];
+    }
+    if (!found) fail("renderer", "light " + std::to_string(i) + " is not in the rendered scene");
+    for (int k = 0; k < 3; ++k) {
+      found->ambient[k] *= light_scales_[i];
+      found->diffuse[k] *= light_scales_[i];
+      found->specular[k] *= light_scales_[i];
+    }
+  }
+}
+
 void Renderer::render(mjData* data, RenderedFrame& out, RenderTimings* timings) {
   const int w = intrinsics_.width, h = intrinsics_.height;
   const mjrRect viewport{0, 0, w, h};
   gl_->make_current();
   auto t0 = std::chrono::steady_clock::now();
   mjv_updateScene(model_, data, &option_, nullptr, &camera_, mjCAT_ALL, &scene_);
+  apply_light_scales(data);
   apply_intrinsics();
   scene_.flags[mjRND_SEGMENT] = 0;
   scene_.flags[mjRND_IDCOLOR] = 0;
@@ -127,6 +158,7 @@ void Renderer::render_colour(mjData* data, cv::Mat& bgr, RenderTimings* timings)
   gl_->make_current();
   auto t0 = std::chrono::steady_clock::now();
   mjv_updateScene(model_, data, &option_, nullptr, &camera_, mjCAT_ALL, &scene_);
+  apply_light_scales(data);
   apply_intrinsics();
   scene_.flags[mjRND_SEGMENT] = 0;
   scene_.flags[mjRND_IDCOLOR] = 0;

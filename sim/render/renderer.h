@@ -36,9 +36,13 @@ class Renderer {
   // The colour image only (sub-frames of an exposure): the same pixels as
   // render()'s bgr, without depth and labels.
   void render_colour(mjData* data, cv::Mat& bgr, RenderTimings* timings = nullptr);
+  // Scales each model light's colours (indexed as the model's lights; empty
+  // or 1: as modelled) in the renders that follow: lamps switched or dimmed.
+  void set_light_scales(std::vector<float> scales) { light_scales_ = std::move(scales); }
 
  private:
   void apply_intrinsics();
+  void apply_light_scales(const mjData* data);
 
   const mjModel* model_;
   CameraIntrinsics intrinsics_;
@@ -53,6 +57,7 @@ class Renderer {
   std::vector<float> depth_;
   std::vector<unsigned char> seg_;
   double near_ = 0, far_ = 0;
+  std::vector<float> light_scales_;
 };
 
 }  // namespace depot::sim

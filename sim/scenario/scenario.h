@@ -204,6 +204,16 @@ struct Scenario {
   SensorSpec sensor;
   // `camera_cover`: when the camera sees nothing (sim/scenario/camera_cover.h).
   std::vector<CoverInterval> camera_cover;
+  // `lamps`: ceiling lights switched or dimmed on their own (light that
+  // differs by place, unlike the sensor's `light`, which scales the whole
+  // hall). Each is the scene layout's light nearest `near`; its level
+  // follows `events` as `light_events` do (sim/sensor/light.h), and the
+  // renderer lights the scene with it, so only what that lamp lit changes.
+  struct Lamp {
+    Eigen::Vector2d near{0, 0};  // m, hall coordinates
+    LightSpec level;             // events only (level 1, no flicker)
+  };
+  std::vector<Lamp> lamps;
   std::vector<ActorSpec> written_actors;  // as in the file
   std::vector<ActorSpec> actors;          // after dynamic-load scaling
 };

@@ -225,10 +225,11 @@ void read_timestamps(const Fields& f, TimestampSpec& t) {
          "times are a real driver's already)");
 }
 
-// `light_events: [[t, level], ...]`, times ascending.
-std::vector<Eigen::Vector2d> read_light_events(const Fields& f) {
-  const YAML::Node n = f.node("light_events");
-  if (!n.IsSequence()) fail(f.where(n), "'light_events' must be a list of [time, level]");
+// `light_events: [[t, level], ...]` (or a lamp's `events`), times ascending.
+std::vector<Eigen::Vector2d> read_light_events(const Fields& f, const char* key = "light_events") {
+  const YAML::Node n = f.node(key);
+  if (!n.IsSequence())
+    fail(f.where(n), "'" + std::string(key) + "' must be a list of [time, level]");
   std::vector<Eigen::Vector2d> events;
   for (const auto& e : n) {
     std::vector<double> v;
@@ -240,7 +241,7 @@ std::vector<Eigen::Vector2d> read_light_events(const Fields& f) {
       fail(f.where(e), "a light event must be [time, level]");
     if (v[1] < 0 || v[1] > 10) fail(f.where(e), "a light level must be within [0, 10]");
     if (!events.empty() && v[0] < events.back().x())
-      fail(f.where(e), "light_events must be in time order");
+      fail(f.where(e), std::string(key) + " must be in time order");
     events.emplace_back(v[0], v[1]);
   }
   return events;
@@ -436,6 +437,25 @@ void check_shutter_fits_frame(const Fields& top, const Scenario& s) {
   }
 }
 
+// `lamps: [{near: [x, y], events: [[t, level], ...]}, ...]`.
+std::vector<Scenario::Lamp> read_lamps(const Fields& top, const Source& source) {
+  const YAML::Node n = top.node("lamps");
+  if (!n.IsSequence()) fail(top.where(n), "'lamps' must be a list of {near, events}");
+  std::vector<Scenario::Lamp> lamps;
+  for (const auto& node : n) {
+    Fields f(node, source, "a lamp");
+    f.allow_only({"near", "events"});
+    if (!f.has("near") || !f.has("events"))
+      fail(f.where(), "a lamp needs 'near: [x, y]' (which ceiling light) and 'events'");
+    Scenario::Lamp lamp;
+    lamp.near = f.vec2("near", lamp.near);
+    lamp.level.events = read_light_events(f, "events");
+    if (lamp.level.events.empty()) fail(f.where(f.node("events")), "a lamp's events are empty");
+    lamps.push_back(lamp);
+  }
+  return lamps;
+}
+
 // `camera_cover: [[start, end], ...]`, seconds since the first frame. Every
 // problem is one error naming the file, the line and the key.
 std::vector<CoverInterval> read_camera_cover(const Fields& top, const Scenario& s) {
@@ -529,10 +549,10 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
     }
   }
   Fields top(root, source, "scenario");
-  top.allow_only({"name", "description", "scene", "classes", "seed", "seed_world", "frames",
-                  "shadows", "dynamic_load", "style", "actors_style", "props_style",
-                  "asset_catalog", "camera", "motion", "timestamps", "sensor", "camera_cover",
-                  "actors"});
+  top.allow_only({"name",         "description", "scene",         "classes",      "seed",
+                  "seed_world",   "frames",      "shadows",       "dynamic_load", "style",
+                  "actors_style", "props_style", "asset_catalog", "camera",       "motion",
+                  "timestamps",   "sensor",      "camera_cover",  "lamps",        "actors"});
 
   Scenario s;
   s.source_path = path;
@@ -577,6 +597,7 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
     check_shutter_fits_frame(top, s);
   }
   if (top.has("camera_cover")) s.camera_cover = read_camera_cover(top, s);
+  if (top.has("lamps")) s.lamps = read_lamps(top, source);
 
   if (YAML::Node actors = top.node("actors")) {
     if (!actors.IsSequence()) fail(top.where(actors), "'actors' must be a list");

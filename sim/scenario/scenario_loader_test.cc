@@ -106,6 +106,27 @@ TEST(ScenarioSensorProfile, ShippedProfilesGiveTheirCamerasValues) {
   EXPECT_DOUBLE_EQ(d435.sensor.colour.full_well, 4300);
 }
 
+// Lamps: each needs which light and its events; mistakes are one error
+// naming the file and the problem.
+TEST(ScenarioLamps, ReadsLampsAndRefusesBadOnes) {
+  const Scenario s =
+      load_scenario(kWalking, {{"lamps", "[{near: [0, 3], events: [[1, 1], [2, 0.2]]}]"}});
+  ASSERT_EQ(s.lamps.size(), 1u);
+  EXPECT_EQ(s.lamps[0].near, Eigen::Vector2d(0, 3));
+  ASSERT_EQ(s.lamps[0].level.events.size(), 2u);
+  EXPECT_DOUBLE_EQ(s.lamps[0].level.events[1].y(), 0.2);
+  for (const auto& [value, needle] : std::vector<std::pair<std::string, std::string>>{
+           {"[{near: [0, 3]}]", "a lamp needs 'near: [x, y]' (which ceiling light) and 'events'"},
+           {"[{near: [0, 3], events: [[2, 1], [1, 0]]}]", "events must be in time order"},
+           {"[{near: [0, 3], events: [[1, -1]]}]", "a light level must be within [0, 10]"},
+           {"[{near: [0, 3], events: [], colour: red}]", "unknown key 'colour'"},
+           {"{near: [0, 3]}", "'lamps' must be a list of {near, events}"}}) {
+    const std::string error = error_of([&] { load_scenario(kWalking, {{"lamps", value}}); });
+    EXPECT_NE(error.find(needle), std::string::npos) << value << ": " << error;
+    EXPECT_NE(error.find("depot_walking_xyz.yaml"), std::string::npos) << error;
+  }
+}
+
 // A check between a profile's key and the scenario's own names the scenario's
 // setting and the problem (it once failed inside yaml-cpp: "invalid node",
 // looking up the line of a key the scenario's sensor map does not hold).

@@ -94,6 +94,23 @@ SimulatedSequence::SimulatedSequence(const Scenario& scenario, GlBackend backend
     lens_ = std::make_unique<LensMapping>(
         make_lens_mapping(scenario_.camera, lens, scenario_.source_path));
   const CameraIntrinsics& render_camera = lens_ ? lens_->canvas : scenario_.camera;
+  // Each lamp drives the ceiling light nearest it (the model's lights are
+  // the layout's, in order); two lamps may not share one.
+  for (size_t k = 0; k < scenario_.lamps.size(); ++k) {
+    if (layout.lights.empty()) fail(scenario_.source_path, "lamps: the scene has no lights");
+    int nearest = 0;
+    for (size_t i = 1; i < layout.lights.size(); ++i)
+      if ((layout.lights[i].head<2>() - scenario_.lamps[k].near).norm() <
+          (layout.lights[nearest].head<2>() - scenario_.lamps[k].near).norm())
+        nearest = static_cast<int>(i);
+    for (size_t j = 0; j < k; ++j)
+      if (lamp_lights_[j] == nearest)
+        fail(scenario_.source_path,
+             "lamps " + std::to_string(j + 1) + " and " + std::to_string(k + 1) +
+                 " both pick the ceiling light at (" + std::to_string(layout.lights[nearest].x()) +
+                 ", " + std::to_string(layout.lights[nearest].y()) + ")");
+    lamp_lights_.push_back(nearest);
+  }
   world_ = std::make_unique<World>(build_scene(layout, classes_, scenario_, render_camera));
   if (render)
     renderer_ =
@@ -186,6 +203,7 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
     world_->advance_to(world_time + offset);
     const Pose world_camera = motion_->pose_at(t_rgb + offset);
     world_->set_camera_pose(world_camera);
+    light_lamps(since_first + offset);
     if (timings)
       timings->physics_ms +=
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -285,6 +303,15 @@ void SimulatedSequence::synthesise_subframes(const RenderedFrame& stamp,
       colours[k] = subframe_buffers_[k];
     }
   });
+}
+
+void SimulatedSequence::light_lamps(double since_first) {
+  if (!renderer_ || lamp_lights_.empty()) return;
+  std::vector<float> scales(world_->model()->nlight, 1.0f);
+  for (size_t k = 0; k < lamp_lights_.size(); ++k)
+    scales.at(lamp_lights_[k]) =
+        static_cast<float>(light_level_at(scenario_.lamps[k].level, since_first));
+  renderer_->set_light_scales(std::move(scales));
 }
 
 void SimulatedSequence::render(RenderedFrame& out, RenderTimings* timings) {

@@ -115,8 +115,12 @@ class SimulatedSequence {
   int next_ = 0;
   ShutterTiming shutter_;  // inactive for an ideal sensor
   ExposureControl exposure_control_;
-  double depth_offset_ = 0;     // s, the depth camera's instant (0 for an ideal sensor)
-  double last_body_speed_ = 0;  // m/s, fastest tracked body over the last frame
+  double depth_offset_ = 0;       // s, the depth camera's instant (0 for an ideal sensor)
+  double last_body_speed_ = 0;    // m/s, fastest tracked body over the last frame
+  std::vector<int> lamp_lights_;  // per scenario lamp, the model light it drives
+
+  // Sets the renderer's lamps to their levels at `since_first` seconds.
+  void light_lamps(double since_first);
 
   // The dataset camera's images of the world's current state.
   void render(RenderedFrame& out, RenderTimings* timings);
