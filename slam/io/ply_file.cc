@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -71,6 +72,15 @@ PlyCheck check_ply_file(const std::string& path) {
     ++line_no;
     check.header_bytes += line.size() + 1;
     if (!line.empty() && line.back() == '\r') line.pop_back();
+    // A header is text: assimp reads its lines as C strings, and a NUL or
+    // other control byte inside one once sent it into an endless loop on a
+    // header this check had passed (found by fuzz_ply_file).
+    for (const char c : line)
+      if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f) {
+        char hex[8];
+        std::snprintf(hex, sizeof(hex), "0x%02x", static_cast<unsigned char>(c));
+        header_fail(std::string("holds a control byte (") + hex + "); a PLY header is text");
+      }
     if (line_no == 1) {
       if (line != "ply") fail(path, "not a PLY file (it does not start with \"ply\")");
       continue;
@@ -112,9 +122,10 @@ PlyCheck check_ply_file(const std::string& path) {
         p.size = ply_type_size(type);
         if (!p.size) header_fail("unknown property type '" + type + "'");
       }
-      std::string name;
-      words >> name;
+      std::string name, extra;
+      words >> name >> extra;
       if (name.empty()) header_fail("a property without a name");
+      if (!extra.empty()) header_fail("unexpected '" + extra + "' after property '" + name + "'");
       elements.back().properties.push_back(p);
     } else if (keyword == "end_header") {
       ended = true;

@@ -120,6 +120,8 @@ TEST_F(PlyCheckTest, BadHeadersAreOneErrorEach) {
       {"ply\nformat ascii 1.0\nelement vertex 1\nproperty float128 x\nend_header\n",
        ":4: unknown property type 'float128'"},
       {"ply\nformat ascii 1.0\nvertex 1\nend_header\n", ":3: unknown header line 'vertex'"},
+      {"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x y\nend_header\n",
+       ":4: unexpected 'y' after property 'x'"},
   };
   int i = 0;
   for (const auto& c : cases) {
@@ -127,6 +129,14 @@ TEST_F(PlyCheckTest, BadHeadersAreOneErrorEach) {
     const std::string p = write("bad" + std::to_string(i++) + ".ply", c.bytes);
     EXPECT_THAT(error_of([&] { check_ply_file(p); }, "(no error)"), HasSubstr(c.problem));
   }
+  // fuzz_ply_file's find: NUL bytes inside a property line passed this check
+  // and kept assimp reading for ever.
+  const std::string nul_header(
+      "ply\nformat ascii 2.0\nelement vertex 3\nproperty float x\0\0\0"
+      "roperty f verxte_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n",
+      111);
+  EXPECT_THAT(error_of([&] { check_ply_file(write("nul.ply", nul_header)); }, "(no error)"),
+              HasSubstr(":4: holds a control byte (0x00); a PLY header is text"));
   EXPECT_THAT(error_of([&] { check_ply_file(path("absent.ply")); }),
               HasSubstr("absent.ply: no such file"));
 }
