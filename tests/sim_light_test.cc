@@ -16,7 +16,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "dataset/exposures.h"
+#include "sim/scenario/scenario_loader.h"
 #include "sim/sensor/auto_exposure.h"
+#include "sim/world/simulated_sequence.h"
 #include "tests/support/cli_checks.h"
 #include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
@@ -166,6 +168,34 @@ TEST(SimLight, ALampSwitchedOffDarkensWhatItLitAndNothingElse) {
             " --set 'lamps=[{near: [0, 3], events: [[0, 0]]}, {near: [0.4, 3.2], events: [[0, "
             "0]]}]'");
   expect_one_error_line(twice, "lamps 1 and 2 both pick the ceiling light at (0.000000, 3.000000)");
+}
+
+// Under the motion field, a frame whose exposure spans a lamp's change is
+// rendered sub-frame by sub-frame (the one render cannot show the change);
+// the frames before and after it are moved from one render as usual.
+TEST(SimLight, AFrameSpanningALampChangeIsRenderedSubFrameBySubFrame) {
+  sim::Scenario scenario = sim::load_scenario(
+      scenario_path("depot_static"), {{"sensor.exposure", "0.02"},
+                                      {"sensor.readout", "0.02"},
+                                      {"sensor.motion_blur", "field"},
+                                      {"lamps", "[{near: [0, 3], events: [[0.1, 1], [0.1, 0]]}]"}});
+  scenario.frames = 6;
+  sim::scale_camera(scenario.camera, 64);
+  sim::SimulatedSequence sequence(scenario, sim::GlBackend::kOsMesa);
+  sim::RenderedFrame frame;
+  sim::FrameTruth truth;
+  sim::SequenceTimings timings;
+  std::vector<int> renders;
+  while (sequence.next(frame, truth, &timings)) renders.push_back(timings.renders);
+  ASSERT_EQ(renders.size(), 6u);
+  // Frame 3 (0.1 s, its span 0.08-0.12 s) holds the switch.
+  for (int i = 0; i < 6; ++i) {
+    if (i == 3) {
+      EXPECT_GT(renders[i], 1) << i;
+    } else {
+      EXPECT_EQ(renders[i], 1) << i;
+    }
+  }
 }
 
 TEST(SimLight, EveryStageOnGivesByteIdenticalDatasetsAndTheTruthStays) {

@@ -1,7 +1,7 @@
 #include "sim/render/renderer.h"
 
 #include <chrono>
-#include <cmath>
+#include <vector>
 
 #include "common/error.h"
 
@@ -70,8 +70,10 @@ void Renderer::apply_light_scales(const mjData* data) {
   if (static_cast<int>(light_scales_.size()) != model_->nlight)
     fail("renderer", "light scales for " + std::to_string(light_scales_.size()) +
                          " lights, the model has " + std::to_string(model_->nlight));
-  // mjv_updateScene copies the model's lights (after the headlight, if on):
-  // each is found by its world position and direction.
+  // mjv_updateScene copies the model's lights (after the headlight, if on),
+  // their world positions and directions cast to float: each model light is
+  // the scene light with exactly those, each scene light taken once.
+  std::vector<bool> taken(scene_.nlight, false);
   for (int i = 0; i < model_->nlight; ++i) {
     if (light_scales_[i] == 1.0f) continue;
     const mjtNum* pos = data->light_xpos + 3 * i;
@@ -79,11 +81,15 @@ void Renderer::apply_light_scales(const mjData* data) {
     mjvLight* found = nullptr;
     for (int j = 0; j < scene_.nlight && !found; ++j) {
       const mjvLight& l = scene_.lights[j];
-      if (l.headlight) continue;
+      if (l.headlight || taken[j]) continue;
       bool same = true;
       for (int k = 0; k < 3; ++k)
-        same = same && std::abs(l.pos[k] - pos[k]) < 1e-5 && std::abs(l.dir[k] - dir[k]) < 1e-5;
-      if (same) found = &scene_.lights[j];
+        same = same && l.pos[k] == static_cast<float>(pos[k]) &&
+               l.dir[k] == static_cast<float>(dir[k]);
+      if (same) {
+        found = &scene_.lights[j];
+        taken[j] = true;
+      }
     }
     if (!found) fail("renderer", "light " + std::to_string(i) + " is not in the rendered scene");
     for (int k = 0; k < 3; ++k) {

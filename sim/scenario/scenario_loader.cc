@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <set>
 #include <sstream>
@@ -542,7 +543,15 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
       if (!child) break;
       node.reset(child);
       if (dot == std::string::npos) {
-        source.overrides.emplace_back(node, option);
+        // Every node of the value (a --set list or map) names the option.
+        std::function<void(const YAML::Node&)> name = [&](const YAML::Node& n) {
+          source.overrides.emplace_back(n, option);
+          if (n.IsMap())
+            for (const auto& kv : n) name(kv.first), name(kv.second);
+          else if (n.IsSequence())
+            for (const auto& e : n) name(e);
+        };
+        name(node);
         break;
       }
       start = dot + 1;

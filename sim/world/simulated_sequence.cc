@@ -184,7 +184,10 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
                     1.0 / scenario_.timestamps.rate + frame_instants_range(scenario_).first;
   // The motion field renders the timestamp only and keeps, per sub-frame,
   // the camera and every tracked body to move that render by.
-  const bool field = shutter && scenario_.sensor.motion_blur == "field";
+  // A lamp changing during the span is light the one render cannot show:
+  // that frame is rendered sub-frame by sub-frame.
+  const bool field = shutter && scenario_.sensor.motion_blur == "field" &&
+                     !lamps_change(since_first + offsets.front(), since_first + offsets.back());
   std::vector<Pose> field_cameras(field ? offsets.size() : 0);
   std::vector<std::vector<Pose>> field_bodies(field ? offsets.size() : 0);
   RenderedFrame stamp;  // the render the field moves
@@ -303,6 +306,15 @@ void SimulatedSequence::synthesise_subframes(const RenderedFrame& stamp,
       colours[k] = subframe_buffers_[k];
     }
   });
+}
+
+bool SimulatedSequence::lamps_change(double t0, double t1) const {
+  for (const Scenario::Lamp& lamp : scenario_.lamps) {
+    if (light_level_at(lamp.level, t0) != light_level_at(lamp.level, t1)) return true;
+    for (const Eigen::Vector2d& e : lamp.level.events)
+      if (e.x() > t0 && e.x() < t1) return true;
+  }
+  return false;
 }
 
 void SimulatedSequence::light_lamps(double since_first) {

@@ -121,6 +121,8 @@ class SimulatedSequence {
 
   // Sets the renderer's lamps to their levels at `since_first` seconds.
   void light_lamps(double since_first);
+  // Whether any lamp's level changes between the two instants.
+  bool lamps_change(double t0, double t1) const;
 
   // The dataset camera's images of the world's current state.
   void render(RenderedFrame& out, RenderTimings* timings);

@@ -72,6 +72,10 @@ PlyCheck check_ply_file(const std::string& path) {
     ++line_no;
     check.header_bytes += line.size() + 1;
     if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line_no == 1) {
+      if (line != "ply") fail(path, "not a PLY file (it does not start with \"ply\")");
+      continue;
+    }
     // A header is text: assimp reads its lines as C strings, and a NUL or
     // other control byte inside one once sent it into an endless loop on a
     // header this check had passed (found by fuzz_ply_file).
@@ -81,10 +85,6 @@ PlyCheck check_ply_file(const std::string& path) {
         std::snprintf(hex, sizeof(hex), "0x%02x", static_cast<unsigned char>(c));
         header_fail(std::string("holds a control byte (") + hex + "); a PLY header is text");
       }
-    if (line_no == 1) {
-      if (line != "ply") fail(path, "not a PLY file (it does not start with \"ply\")");
-      continue;
-    }
     std::istringstream words(line);
     std::string keyword;
     words >> keyword;
