@@ -22,6 +22,28 @@ namespace {
 // apart: nearer surfaces moving fast get coarser steps (still capped by
 // max_subframes in any case).
 constexpr double kSmearDepth = 1.0;  // m
+
+// Each lamp drives the ceiling light nearest it (the model's lights are the
+// layout's, in order); two lamps may not share one.
+std::vector<int> lamp_lights(const Scenario& scenario, const SceneLayout& layout) {
+  std::vector<int> lights;
+  for (const Scenario::Lamp& lamp : scenario.lamps) {
+    if (layout.lights.empty()) fail(scenario.source_path, "lamps: the scene has no lights");
+    auto distance = [&](size_t i) { return (layout.lights[i].head<2>() - lamp.near).norm(); };
+    int nearest = 0;
+    for (size_t i = 1; i < layout.lights.size(); ++i)
+      if (distance(i) < distance(nearest)) nearest = static_cast<int>(i);
+    const auto same = std::find(lights.begin(), lights.end(), nearest);
+    if (same != lights.end())
+      fail(scenario.source_path, "lamps " + std::to_string(same - lights.begin() + 1) + " and " +
+                                     std::to_string(lights.size() + 1) +
+                                     " both pick the ceiling light at (" +
+                                     std::to_string(layout.lights[nearest].x()) + ", " +
+                                     std::to_string(layout.lights[nearest].y()) + ")");
+    lights.push_back(nearest);
+  }
+  return lights;
+}
 }  // namespace
 
 std::pair<double, double> frame_instants_range(const Scenario& s) {
@@ -94,23 +116,7 @@ SimulatedSequence::SimulatedSequence(const Scenario& scenario, GlBackend backend
     lens_ = std::make_unique<LensMapping>(
         make_lens_mapping(scenario_.camera, lens, scenario_.source_path));
   const CameraIntrinsics& render_camera = lens_ ? lens_->canvas : scenario_.camera;
-  // Each lamp drives the ceiling light nearest it (the model's lights are
-  // the layout's, in order); two lamps may not share one.
-  for (size_t k = 0; k < scenario_.lamps.size(); ++k) {
-    if (layout.lights.empty()) fail(scenario_.source_path, "lamps: the scene has no lights");
-    int nearest = 0;
-    for (size_t i = 1; i < layout.lights.size(); ++i)
-      if ((layout.lights[i].head<2>() - scenario_.lamps[k].near).norm() <
-          (layout.lights[nearest].head<2>() - scenario_.lamps[k].near).norm())
-        nearest = static_cast<int>(i);
-    for (size_t j = 0; j < k; ++j)
-      if (lamp_lights_[j] == nearest)
-        fail(scenario_.source_path,
-             "lamps " + std::to_string(j + 1) + " and " + std::to_string(k + 1) +
-                 " both pick the ceiling light at (" + std::to_string(layout.lights[nearest].x()) +
-                 ", " + std::to_string(layout.lights[nearest].y()) + ")");
-    lamp_lights_.push_back(nearest);
-  }
+  lamp_lights_ = lamp_lights(scenario_, layout);
   world_ = std::make_unique<World>(build_scene(layout, classes_, scenario_, render_camera));
   if (render)
     renderer_ =

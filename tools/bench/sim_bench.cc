@@ -151,7 +151,6 @@ void sensor_effect_costs(const depot::sim::Scenario& scenario, int writers) {
   steps.emplace_back("+ exposure, rolling shutter (field)", s);
   s.motion_blur = "subframes";
   steps.emplace_back("  (by sub-frame renders instead)", s);
-  s.motion_blur = full.motion_blur;
   std::printf("sensor effects end to end (%s's sensor: exposure %.3f s%s, readout %.3f s)\n",
               scenario.name.c_str(), full.exposure, full.exposure_control.automatic ? " auto" : "",
               full.readout);
