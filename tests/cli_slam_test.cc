@@ -430,7 +430,8 @@ namespace {
 // The dense static map of a walking scene from `full`, scored against the
 // simulator's truth: with the rejection's masks few points lie on the
 // movers, the same fusion without masks many more, the truth's labels as
-// masks hardly any. Measured at 320x240, 120 frames: 1.9 %, 12.0 %, 0.03 %.
+// masks hardly any. Measured at 320x240, 120 frames: 1.9 %, 12.0 %, 0.03 %
+// before the atlas; 0.70 %, 7.8 %, 0.03 % with it (the main map's keyframes).
 TEST(CliSlam, DenseStaticMapLeavesTheMoversOut) {
   const std::string dataset = render_small({"depot_walking_xyz", 120, 320, false});
   SmallRender static_request{"depot_walking_xyz", 120, 320, true};
@@ -463,7 +464,7 @@ TEST(CliSlam, DenseStaticMapLeavesTheMoversOut) {
   const double masked_share = number(masked_score, "on_moving_share");
   const double unmasked_share = number(unmasked_score, "on_moving_share");
   EXPECT_LT(masked_share, 0.04) << masked_score;
-  EXPECT_GT(unmasked_share, 0.08) << unmasked_score;
+  EXPECT_GT(unmasked_share, 0.05) << unmasked_score;
   EXPECT_LT(masked_share, 0.3 * unmasked_share);
   EXPECT_LT(number(labels_score, "on_moving_share"), 0.005) << labels_score;
   EXPECT_LT(number(masked_score, "median_m"), 0.02) << masked_score;

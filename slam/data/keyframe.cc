@@ -105,7 +105,7 @@ void KeyFrame::set_parent(KeyFrame* p) {
 }
 
 void KeyFrame::set_bad() {
-  if (id == 0 || !loop_edges.empty()) return;
+  if (map_origin || !loop_edges.empty()) return;
   for (auto& [kf, w] : connections_) kf->erase_connection(this);
   for (size_t i = 0; i < map_points.size(); ++i)
     if (map_points[i]) map_points[i]->erase_observation(this);

@@ -31,6 +31,11 @@ class KeyFrame {
   Pose T_cw;
   Pose T_cp = Pose::Identity();  // relative to the parent, fixed when set bad
   bool bad = false;
+  // The map of the atlas it belongs to (Map::active_map() when made; a
+  // merge moves it to the map it joins), and whether it started that map:
+  // an origin is fixed in bundle adjustment and never culled.
+  int map_id = 0;
+  bool map_origin = false;
   // Keyframes this one closed a loop with (loop closing); such keyframes are
   // never culled, so the essential graph keeps the loop.
   std::set<KeyFrame*, ById> loop_edges;

@@ -3,17 +3,28 @@
 // bad ones leave the active sets), with one mutex that tracking and local
 // mapping hold while they read or change it.
 //
+// It is an atlas (ORB-SLAM3): it may hold several maps, each a set of
+// keyframes and points in a coordinate frame of its own, named by the
+// map_id every keyframe and point carries. One map is active: tracking
+// adds to it, and a lost camera that cannot relocalise starts a new one
+// (begin_map) instead of throwing the old one away. Relocalisation searches
+// every map; loop closing merges two maps when it finds a place both have
+// seen (merge_maps moves one into the other's frame). Nothing links
+// keyframes or points of different maps.
+//
 // Locking rule: mutex() guards the Map's sets and every field of every
 // KeyFrame and MapPoint it owns (poses, positions, observations,
-// covisibility, spanning tree, bad flags). Any thread that reads or writes
-// them holds it; the methods here and of KeyFrame / MapPoint do not lock
-// (their callers do). Pointers stay valid without the lock (nothing is
-// freed), but what they point to may not be read without it.
+// covisibility, spanning tree, bad flags, map ids) and the active map.
+// Any thread that reads or writes them holds it; the methods here and of
+// KeyFrame / MapPoint do not lock (their callers do). Pointers stay valid
+// without the lock (nothing is freed), but what they point to may not be
+// read without it.
 #include <memory>
 #include <mutex>
 #include <set>
 #include <vector>
 
+#include "common/pose.h"
 #include "slam/data/by_id.h"
 #include "slam/data/keyframe.h"
 #include "slam/data/map_point.h"
@@ -22,16 +33,37 @@ namespace depot::slam {
 
 class Map {
  public:
+  // A keyframe of the active map (its origin when it is the map's first).
   KeyFrame* create_keyframe(const Frame& frame);
+  // A point of its reference keyframe's map (the active one without reference).
   MapPoint* create_map_point(const Eigen::Vector3d& position, KeyFrame* reference);
   void erase_keyframe(KeyFrame* kf) { keyframes_.erase(kf); }
   void erase_map_point(MapPoint* mp) { map_points_.erase(mp); }
 
+  // Every map's keyframes and points.
   const std::set<KeyFrame*, ById>& keyframes() const { return keyframes_; }
   const std::set<MapPoint*, ById>& map_points() const { return map_points_; }
   size_t n_keyframes() const { return keyframes_.size(); }
   size_t n_map_points() const { return map_points_.size(); }
   KeyFrame* first_keyframe() const { return keyframes_.empty() ? nullptr : *keyframes_.begin(); }
+
+  // One map of the atlas.
+  std::vector<KeyFrame*> keyframes_in(int map_id) const;
+  size_t n_keyframes_in(int map_id) const;
+  // Its oldest keyframe that is still in it, or null when it has none.
+  KeyFrame* first_keyframe_in(int map_id) const;
+  // Ids of the maps that have keyframes, oldest first.
+  std::vector<int> map_ids() const;
+
+  int active_map() const { return active_; }
+  // Makes a map the active one (relocalisation found the camera in it).
+  void activate(int map_id) { active_ = map_id; }
+  // A new, empty map becomes the active one; the others are kept. Returns its id.
+  int begin_map() { return active_ = next_map_++; }
+  // Moves every keyframe and point of map `from` into map `into`: T_into_from
+  // takes `from`'s world coordinates to `into`'s. `from`'s origin stops being
+  // one. The active map follows when it was `from`.
+  void merge_maps(int from, int into, const Pose& T_into_from);
 
   // Forgets every keyframe and point (they turn bad; memory stays, so old
   // pointers remain valid). Used when tracking is lost right after start.
@@ -48,6 +80,8 @@ class Map {
   std::vector<std::unique_ptr<MapPoint>> mp_storage_;
   std::set<KeyFrame*, ById> keyframes_;
   std::set<MapPoint*, ById> map_points_;
+  int active_ = 0;
+  int next_map_ = 1;
 };
 
 }  // namespace depot::slam

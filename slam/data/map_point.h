@@ -25,6 +25,7 @@ class MapPoint {
   std::map<KeyFrame*, size_t, ById> observations;  // keyframe -> keypoint index
   KeyFrame* reference;
   long first_keyframe_id;
+  int map_id = 0;              // the atlas map of its reference keyframe (Map)
   int visible = 1, found = 1;  // tracking statistics
   bool bad = false;
   // Set when fusion merged this point into another (it is bad then); holders

@@ -22,7 +22,7 @@ std::string format_frame_states(const std::vector<StampedFrameState>& states,
   if (!header.empty()) text += "# " + header + "\n";
   text +=
       "# timestamp state (tracked = NEW_MAP, OK, RELOCALIZED: in the trajectory; untracked = "
-      "NOT_INITIALIZED, LOST, ABANDONED; see slam/track/tracking_state.h)\n";
+      "NOT_INITIALIZED, LOST, ABANDONED, OTHER_MAP; see slam/track/tracking_state.h)\n";
   char line[64];
   for (const StampedFrameState& s : states) {
     std::snprintf(line, sizeof(line), "%.6f %s\n", s.timestamp, frame_state_name(s.state));
@@ -59,7 +59,8 @@ std::vector<StampedFrameState> read_frame_states(const std::string& path) {
     const std::optional<FrameState> state = parse_frame_state(name);
     if (!state)
       fail(where, "unknown state '" + name +
-                      "' (expected NOT_INITIALIZED, NEW_MAP, OK, RELOCALIZED, LOST or ABANDONED)");
+                      "' (expected NOT_INITIALIZED, NEW_MAP, OK, RELOCALIZED, LOST, ABANDONED or "
+                      "OTHER_MAP)");
     out.push_back({t, *state});
   }
   if (in.bad()) fail(path, "read error");

@@ -1,7 +1,7 @@
 #pragma once
 // The states file beside a trajectory: one line "timestamp STATE" for every
 // frame given to the system, STATE as tracking_state.h names it (NEW_MAP,
-// OK, RELOCALIZED, LOST, NOT_INITIALIZED, ABANDONED), after '#' comment
+// OK, RELOCALIZED, LOST, NOT_INITIALIZED, ABANDONED, OTHER_MAP), after '#' comment
 // lines. The trajectory holds the tracked frames' poses only; this file says
 // what became of the others, and gives the tracked share.
 #include <string>

@@ -68,7 +68,11 @@ std::string describe(const PinholeCamera& c) {
 }  // namespace
 
 void save_map_file(const Map& map, const PinholeCamera& camera, const ScaleLevels& levels,
-                   uint32_t vocabulary_identity, const std::string& path) {
+                   uint32_t vocabulary_identity, const std::string& path, int only_map) {
+  const auto saved = [only_map](int map_id) { return only_map < 0 || map_id == only_map; };
+  std::vector<const KeyFrame*> keyframes;
+  for (const KeyFrame* kf : map.keyframes())
+    if (saved(kf->map_id)) keyframes.push_back(kf);
   BinaryWriter out;
   out.put_bytes(kMagic, sizeof(kMagic));
   out.put<uint32_t>(kVersion);
@@ -77,8 +81,8 @@ void save_map_file(const Map& map, const PinholeCamera& camera, const ScaleLevel
   out.put<int32_t>(levels.n_levels);
   out.put<float>(levels.scale_factor);
 
-  out.put<uint32_t>(static_cast<uint32_t>(map.n_keyframes()));
-  for (const KeyFrame* kf : map.keyframes()) {
+  out.put<uint32_t>(static_cast<uint32_t>(keyframes.size()));
+  for (const KeyFrame* kf : keyframes) {
     const Features& f = kf->features;
     out.put<int64_t>(kf->id);
     out.put<int64_t>(kf->frame_id);
@@ -116,7 +120,7 @@ void save_map_file(const Map& map, const PinholeCamera& camera, const ScaleLevel
   // part of the map: neither saved, counted by `map info`, nor exported.
   std::vector<const MapPoint*> points;
   for (const MapPoint* mp : map.map_points())
-    if (!mp->bad && mp->n_observations() > 0) points.push_back(mp);
+    if (!mp->bad && mp->n_observations() > 0 && saved(mp->map_id)) points.push_back(mp);
   out.put<uint32_t>(static_cast<uint32_t>(points.size()));
   for (const MapPoint* mp : points) {
     out.put<int64_t>(mp->id);

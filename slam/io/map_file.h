@@ -33,10 +33,11 @@ struct MapFileInfo {
 };
 
 // Writes the map's good keyframes and points through a staged file (a
-// failure leaves no file, and no half file ever replaces an old one). The
-// caller holds map.mutex().
+// failure leaves no file, and no half file ever replaces an old one): those
+// of one map of the atlas (`only_map`), or of all when it is -1. The caller
+// holds map.mutex().
 void save_map_file(const Map& map, const PinholeCamera& camera, const ScaleLevels& levels,
-                   uint32_t vocabulary_identity, const std::string& path);
+                   uint32_t vocabulary_identity, const std::string& path, int only_map = -1);
 
 // Reads a saved map into `map`, which must be empty; keyframes and points
 // are renumbered in their saved order. Throws depot::Error naming the file

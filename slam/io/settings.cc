@@ -74,6 +74,14 @@ SlamSettings load_settings(const std::string& path, const SlamSettings& defaults
       read<int>(tr, "max_frames_between_keyframes", s.tracker.max_frames_between_kf, path, 1, 1000);
   s.tracker.min_init_points =
       read<int>(tr, "min_init_points", s.tracker.min_init_points, path, 10, 10000);
+  if (tr && tr["atlas"]) {
+    try {
+      s.tracker.atlas = tr["atlas"].as<bool>();
+    } catch (const YAML::Exception&) {
+      fail(path + ":" + std::to_string(tr["atlas"].Mark().line + 1),
+           "bad value for 'atlas' (true or false)");
+    }
+  }
   const YAML::Node places = root["place_recognition"];
   if (places && places["vocabulary"]) {
     try {

@@ -16,10 +16,16 @@ void apply_global_adjustment(Map& map, const GlobalBaResult& result) {
     before[k] = k->T_cw;
     after[k] = T_cw;
   }
-  // Keyframes made while it solved: down the spanning tree from the first
-  // keyframe, each keeps its pose relative to its parent.
-  std::deque<KeyFrame*> todo{map.first_keyframe()};
-  std::unordered_set<const KeyFrame*> seen{map.first_keyframe()};
+  // Keyframes made while it solved: down the spanning trees from their
+  // roots (a map's origin, or the old origin of a map merged into another),
+  // each keeps its pose relative to its parent.
+  std::deque<KeyFrame*> todo;
+  std::unordered_set<const KeyFrame*> seen;
+  for (KeyFrame* k : map.keyframes())
+    if (!k->parent()) {
+      todo.push_back(k);
+      seen.insert(k);
+    }
   while (!todo.empty()) {
     KeyFrame* parent = todo.front();
     todo.pop_front();

@@ -73,6 +73,11 @@ int LoopCloser::refused() const {
   return implausible_;
 }
 
+int LoopCloser::unconfirmed_merges() const {
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  return unconfirmed_merges_;
+}
+
 std::vector<LoopClosure> LoopCloser::closures() const {
   std::lock_guard<std::mutex> lock(stats_mutex_);
   return closures_;
@@ -105,20 +110,40 @@ void LoopCloser::process(KeyFrame* kf) {
   }
   // A running global adjustment solves a map this correction changes.
   global_.abort();
-  if (correct(kf, loop) && params_.global_ba_iterations > 0) global_.start();
+  const bool is_merge = loop.matched->map_id != kf->map_id;
+  if (is_merge) {
+    bool confirmed;
+    {
+      std::lock_guard<std::mutex> lock(map_.mutex());
+      confirmed = !kf->bad && !loop.matched->bad && confirmed_by_neighbours(kf, loop);
+    }
+    if (!confirmed) {
+      std::lock_guard<std::mutex> qlock(stats_mutex_);
+      ++unconfirmed_merges_;
+      return;
+    }
+  }
+  const bool changed = is_merge ? merge(kf, loop) : correct(kf, loop);
+  if (changed && params_.global_ba_iterations > 0) global_.start();
 }
 
 bool LoopCloser::detect(KeyFrame* kf, std::vector<KeyFrame*>& out) {
   out.clear();
-  if (static_cast<long>(map_.n_keyframes()) <= params_.keyframes_between_loops ||
-      (last_loop_keyframe_ >= 0 && kf->id < last_loop_keyframe_ + params_.keyframes_between_loops))
-    return false;
+  // Loops within kf's map wait until it is grown and the last loop is a few
+  // keyframes behind; merges with another map never wait.
+  const bool loops_allowed =
+      static_cast<long>(map_.n_keyframes_in(kf->map_id)) > params_.keyframes_between_loops &&
+      !(last_loop_keyframe_ >= 0 && kf->id < last_loop_keyframe_ + params_.keyframes_between_loops);
   // A loop candidate must look at least as much like kf as its least
   // similar covisible keyframe does.
   double min_score = 1;
   for (KeyFrame* c : kf->covisibles())
     min_score = std::min(min_score, bow_similarity(kf->bow, c->bow));
-  const std::vector<KeyFrame*> candidates = places_.loop_candidates(*kf, min_score);
+  std::vector<KeyFrame*> candidates = places_.loop_candidates(*kf, min_score);
+  candidates.erase(
+      std::remove_if(candidates.begin(), candidates.end(),
+                     [&](const KeyFrame* c) { return c->map_id == kf->map_id && !loops_allowed; }),
+      candidates.end());
   if (candidates.empty()) {
     consistent_groups_.clear();
     return false;
@@ -232,7 +257,7 @@ bool LoopCloser::compute_transform(KeyFrame* kf, const std::vector<KeyFrame*>& c
     int n = 0;
     for (MapPoint* mp : view.map_points) n += mp != nullptr;
     if (n < params_.min_loop_matches) continue;
-    if (!plausible_correction(*kf, *candidate, view.T_cw)) {
+    if (candidate->map_id == kf->map_id && !plausible_correction(*kf, *candidate, view.T_cw)) {
       std::lock_guard<std::mutex> qlock(stats_mutex_);
       ++implausible_;
       continue;
@@ -249,12 +274,12 @@ bool LoopCloser::compute_transform(KeyFrame* kf, const std::vector<KeyFrame*>& c
 
 namespace {
 
-// Path length through the keyframes with ids in [from_id, to_id].
-double path_between(const Map& map, long from_id, long to_id) {
+// Path length through the keyframes of one map with ids in [from_id, to_id].
+double path_between(const Map& map, int map_id, long from_id, long to_id) {
   double path = 0;
   const KeyFrame* previous = nullptr;
   for (const KeyFrame* k : map.keyframes()) {
-    if (k->id < from_id || k->id > to_id) continue;
+    if (k->id < from_id || k->id > to_id || k->map_id != map_id) continue;
     if (previous) path += (k->camera_center() - previous->camera_center()).norm();
     previous = k;
   }
@@ -265,7 +290,8 @@ double path_between(const Map& map, long from_id, long to_id) {
 
 bool LoopCloser::plausible_correction(const KeyFrame& kf, const KeyFrame& matched,
                                       const Pose& T_cw) const {
-  const double path = path_between(map_, std::min(kf.id, matched.id), std::max(kf.id, matched.id));
+  const double path =
+      path_between(map_, kf.map_id, std::min(kf.id, matched.id), std::max(kf.id, matched.id));
   const Pose change = T_cw * kf.T_cw.inverse();
   const double moved = (kf.camera_center() - T_cw.inverse().translation()).norm();
   const double turned = Eigen::AngleAxisd(change.linear()).angle();
@@ -305,40 +331,111 @@ bool LoopCloser::correct(KeyFrame* kf, Loop& loop) {
     for (KeyFrame* c : connected)
       for (MapPoint* mp : c->map_points)
         if (mp && !mp->bad) mp->update_normal_and_depth();
-    // The loop's points take the place of kf's duplicates.
-    for (size_t i = 0; i < loop.matches.size(); ++i) {
-      MapPoint* loop_mp = loop.matches[i];
-      if (!loop_mp || loop_mp->bad) continue;
-      MapPoint* mine = kf->map_points[i];
-      if (mine == loop_mp) continue;
-      if (mine && !mine->bad) {
-        mine->replace(loop_mp);
-      } else {
-        kf->add_map_point(loop_mp, i);
-        loop_mp->add_observation(kf, i);
-        loop_mp->update_descriptor();
-      }
-    }
-    for (KeyFrame* c : connected) fuse(c, loop.loop_points, 4.0f);
-    // Links the fusion made across the loop.
-    std::set<KeyFrame*, ById> connected_set(connected.begin(), connected.end());
-    std::map<KeyFrame*, std::set<KeyFrame*, ById>, ById> links;
-    for (KeyFrame* c : connected) {
-      if (c->bad) continue;
-      const std::vector<KeyFrame*> before = c->covisibles();
-      c->update_connections();
-      for (KeyFrame* n : c->covisibles())
-        if (!connected_set.count(n) && std::find(before.begin(), before.end(), n) == before.end())
-          links[c].insert(n);
-    }
-    links[kf].insert(loop.matched);
+    const auto links = fuse_across(kf, loop, connected);
     optimize_essential_graph(kf, loop.matched, original, links);
     kf->loop_edges.insert(loop.matched);
     loop.matched->loop_edges.insert(kf);
     last_loop_keyframe_ = kf->id;
     std::lock_guard<std::mutex> qlock(stats_mutex_);
     closures_.push_back({kf->id, loop.matched->id, kf->timestamp, loop.n_matches, moved_m,
-                         path_between(map_, loop.matched->id, kf->id)});
+                         path_between(map_, kf->map_id, loop.matched->id, kf->id)});
+  }
+  mapper_.resume();
+  return true;
+}
+
+std::map<KeyFrame*, std::set<KeyFrame*, ById>, ById> LoopCloser::fuse_across(
+    KeyFrame* kf, const Loop& loop, const std::vector<KeyFrame*>& connected) {
+  // The loop's points take the place of kf's duplicates.
+  for (size_t i = 0; i < loop.matches.size(); ++i) {
+    MapPoint* loop_mp = loop.matches[i];
+    if (!loop_mp || loop_mp->bad) continue;
+    MapPoint* mine = kf->map_points[i];
+    if (mine == loop_mp) continue;
+    if (mine && !mine->bad) {
+      mine->replace(loop_mp);
+    } else {
+      kf->add_map_point(loop_mp, i);
+      loop_mp->add_observation(kf, i);
+      loop_mp->update_descriptor();
+    }
+  }
+  for (KeyFrame* c : connected) fuse(c, loop.loop_points, 4.0f);
+  // Links the fusion made across the loop.
+  std::set<KeyFrame*, ById> connected_set(connected.begin(), connected.end());
+  std::map<KeyFrame*, std::set<KeyFrame*, ById>, ById> links;
+  for (KeyFrame* c : connected) {
+    if (c->bad) continue;
+    const std::vector<KeyFrame*> before = c->covisibles();
+    c->update_connections();
+    for (KeyFrame* n : c->covisibles())
+      if (!connected_set.count(n) && std::find(before.begin(), before.end(), n) == before.end())
+        links[c].insert(n);
+  }
+  links[kf].insert(loop.matched);
+  return links;
+}
+
+bool LoopCloser::confirmed_by_neighbours(KeyFrame* kf, const Loop& loop) const {
+  // Where kf's pose goes, its neighbours go with it (one rigid move of kf's
+  // map): each must see the other map's points where that move puts them.
+  const Pose T_kf_old_to_new = kf->T_cw.inverse() * loop.T_cw;
+  int confirmed = 0;
+  for (KeyFrame* c : kf->covisibles(static_cast<size_t>(params_.merge_neighbours))) {
+    if (c->bad) continue;
+    Frame view = frame_view(*c);
+    view.T_cw = c->T_cw * T_kf_old_to_new;
+    std::vector<ProjectedPoint> projected;
+    for (MapPoint* mp : loop.loop_points) {
+      ProjectedPoint p;
+      if (!mp->bad && project_into(*mp, view.T_cw, c->features, p)) projected.push_back(p);
+    }
+    match_local_points(view, projected, 3.0f);
+    int n = 0;
+    for (MapPoint* mp : view.map_points) n += mp != nullptr;
+    if (n >= params_.merge_neighbour_matches && ++confirmed >= params_.merge_confirmations)
+      return true;
+  }
+  return false;
+}
+
+bool LoopCloser::merge(KeyFrame* kf, Loop& loop) {
+  mapper_.pause();
+  {
+    std::lock_guard<std::mutex> lock(map_.mutex());
+    if (kf->bad || loop.matched->bad || kf->map_id == loop.matched->map_id) {
+      mapper_.resume();
+      return false;
+    }
+    const int kf_map = kf->map_id, matched_map = loop.matched->map_id;
+    // kf's map frame into the matched map's: kf is at loop.T_cw there.
+    const Pose T_matched_kf = loop.T_cw.inverse() * kf->T_cw;
+    // The smaller map moves; the larger keeps its frame.
+    const size_t n_kf_map = map_.n_keyframes_in(kf_map);
+    const size_t n_matched_map = map_.n_keyframes_in(matched_map);
+    const bool kf_map_moves = n_kf_map <= n_matched_map;
+    if (kf_map_moves)
+      map_.merge_maps(kf_map, matched_map, T_matched_kf);
+    else
+      map_.merge_maps(matched_map, kf_map, T_matched_kf.inverse());
+    std::vector<KeyFrame*> connected = kf->covisibles();
+    connected.push_back(kf);
+    const auto links = fuse_across(kf, loop, connected);
+    (void)links;  // the global bundle adjustment welds the seam
+    kf->loop_edges.insert(loop.matched);
+    loop.matched->loop_edges.insert(kf);
+    last_loop_keyframe_ = kf->id;
+    std::lock_guard<std::mutex> qlock(stats_mutex_);
+    LoopClosure record;
+    record.keyframe = kf->id;
+    record.matched = loop.matched->id;
+    record.timestamp = kf->timestamp;
+    record.matches = loop.n_matches;
+    record.merge = true;
+    record.moved_map = kf_map_moves ? kf_map : matched_map;
+    record.into_map = kf_map_moves ? matched_map : kf_map;
+    record.moved_keyframes = static_cast<int>(kf_map_moves ? n_kf_map : n_matched_map);
+    closures_.push_back(record);
   }
   mapper_.resume();
   return true;
@@ -347,14 +444,15 @@ bool LoopCloser::correct(KeyFrame* kf, Loop& loop) {
 void LoopCloser::optimize_essential_graph(
     KeyFrame* kf, KeyFrame* matched, const std::map<KeyFrame*, Pose, ById>& original,
     const std::map<KeyFrame*, std::set<KeyFrame*, ById>, ById>& links) {
-  std::vector<KeyFrame*> nodes(map_.keyframes().begin(), map_.keyframes().end());
+  // kf's map only: the atlas's other maps share nothing with it.
+  const std::vector<KeyFrame*> nodes = map_.keyframes_in(kf->map_id);
   std::map<const KeyFrame*, size_t> index;
   std::vector<Pose> poses;
   std::vector<bool> fixed;
   for (KeyFrame* k : nodes) {
     index[k] = poses.size();
     poses.push_back(k->T_cw);
-    fixed.push_back(k == map_.first_keyframe());
+    fixed.push_back(k->map_origin);
   }
   // Measurements from the poses before this correction: the graph keeps the
   // map's shape and spreads the loop's error along it.

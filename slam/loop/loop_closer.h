@@ -14,6 +14,13 @@
 //      trajectory entries hang off keyframes and follow;
 //   4. global bundle adjustment of the whole map (GlobalAdjuster, its own
 //      thread; a newer loop aborts it).
+// A candidate in another map of the atlas (map.h) is a merge, not a loop
+// (ORB-SLAM3's map merging): found and computed as above (the two maps'
+// frames are unrelated, so no plausibility bound applies), then confirmed by
+// kf's best covisibles, which must find the other map's points where the
+// same transform puts them. The smaller map is then moved rigidly into the
+// larger one's frame, duplicate points fused across the seam, and the global
+// bundle adjustment welds it.
 //
 // Threading: in threaded mode the closer runs in its own thread (a
 // KeyFrameWorker), fed by local mapping. It holds the map mutex while it
@@ -59,6 +66,12 @@ struct LoopCloserParams {
   // Bundle adjustment of the whole map after each loop (its own thread);
   // 0 iterations: none.
   int global_ba_iterations = 10;
+  // A merge is believed when at least merge_confirmations of kf's best
+  // covisibles (merge_neighbours tried) each find merge_neighbour_matches of
+  // the other map's points where the transform puts them.
+  int merge_neighbours = 5;
+  int merge_confirmations = 2;
+  int merge_neighbour_matches = 20;
 };
 
 // One closed loop.
@@ -69,6 +82,11 @@ struct LoopClosure {
   int matches = 0;          // map-point matches that accepted it
   double correction_m = 0;  // how far the closing keyframe moved
   double path_m = 0;        // path travelled between the two keyframes
+  // A merge of two maps of the atlas: the map that moved and the one it
+  // joined, and how many keyframes moved (correction_m and path_m are 0).
+  bool merge = false;
+  int moved_map = -1, into_map = -1;
+  int moved_keyframes = 0;
 };
 
 class LoopCloser : public KeyFrameSink {
@@ -97,6 +115,8 @@ class LoopCloser : public KeyFrameSink {
   int global_adjustments() const { return global_.completed(); }
   // Loops found but refused as implausible corrections (look-alike places).
   int refused() const;
+  // Merges found but not confirmed by the keyframe's neighbours.
+  int unconfirmed_merges() const;
 
  private:
   struct Loop;
@@ -106,6 +126,14 @@ class LoopCloser : public KeyFrameSink {
   // Whether moving kf to T_cw is drift it could have gathered since `matched`.
   bool plausible_correction(const KeyFrame& kf, const KeyFrame& matched, const Pose& T_cw) const;
   bool correct(KeyFrame* kf, Loop& loop);  // false when a keyframe turned bad
+  // Whether kf's covisibles agree with a merge's transform (see above).
+  bool confirmed_by_neighbours(KeyFrame* kf, const Loop& loop) const;
+  bool merge(KeyFrame* kf, Loop& loop);  // false when a keyframe turned bad
+  // Replaces kf's points by the loop's where they matched and fuses the
+  // loop's points into `connected`; returns the covisibility links that
+  // appeared across the loop (kf -> matched among them).
+  std::map<KeyFrame*, std::set<KeyFrame*, ById>, ById> fuse_across(
+      KeyFrame* kf, const Loop& loop, const std::vector<KeyFrame*>& connected);
   void optimize_essential_graph(KeyFrame* kf, KeyFrame* matched,
                                 const std::map<KeyFrame*, Pose, ById>& original,
                                 const std::map<KeyFrame*, std::set<KeyFrame*, ById>, ById>& links);
@@ -121,7 +149,8 @@ class LoopCloser : public KeyFrameSink {
 
   mutable std::mutex stats_mutex_;
   std::vector<LoopClosure> closures_;
-  int implausible_ = 0;  // loops refused by plausible_correction
+  int implausible_ = 0;         // loops refused by plausible_correction
+  int unconfirmed_merges_ = 0;  // merges kf's covisibles did not confirm
   GlobalAdjuster global_;
   KeyFrameWorker worker_;  // last: its thread may call process() at once
 };

@@ -99,7 +99,7 @@ void LocalMapper::process(KeyFrame* kf) {
   {
     std::lock_guard<std::mutex> lock(map_.mutex());
     if (queued() == 0 && !kf->bad) search_in_neighbors(kf);
-    n_keyframes = map_.n_keyframes();
+    n_keyframes = map_.n_keyframes_in(kf->map_id);
   }
   if (queued() == 0 && n_keyframes > 2) {
     auto t0 = std::chrono::steady_clock::now();
@@ -313,7 +313,7 @@ void LocalMapper::cull_keyframes(KeyFrame* kf) {
   // least three other keyframes at the same or a finer scale.
   const double close = kf->features.camera.close_depth;
   for (KeyFrame* n : kf->covisibles()) {
-    if (n->id == 0 || n->bad) continue;
+    if (n->map_origin || n->bad) continue;
     int redundant = 0, total = 0;
     for (size_t i = 0; i < n->map_points.size(); ++i) {
       MapPoint* mp = n->map_points[i];

@@ -452,7 +452,7 @@ void local_bundle_adjustment(KeyFrame* kf, Map& map, const std::atomic<bool>* ab
     BaBuilder builder(ba);
     auto add_kf = [&](KeyFrame* k, bool fixed) {
       const bool added = !builder.has_keyframe(k);
-      const int index = builder.add_keyframe(k, fixed || k->id == 0);
+      const int index = builder.add_keyframe(k, fixed || k->map_origin);
       if (added) (fixed ? k->fixed_ba_for : k->local_ba_for) = kf->id;
       return index;
     };
@@ -514,11 +514,11 @@ GlobalBaResult global_bundle_adjustment(Map& map, const std::atomic<bool>* abort
   BaProblem ba;
   {
     std::lock_guard<std::mutex> lock(map.mutex());
-    const KeyFrame* first = map.first_keyframe();
-    if (!first) return result;
+    if (!map.first_keyframe()) return result;
     BaBuilder builder(ba);
+    // Every map of the atlas, each held by its origin (they share nothing).
     for (KeyFrame* k : map.keyframes())
-      if (!k->bad) builder.add_keyframe(k, k == first);
+      if (!k->bad) builder.add_keyframe(k, k->map_origin);
     for (MapPoint* mp : map.map_points())
       if (!mp->bad) builder.add_point(mp);
     // Keyframes are all in; an observer missing from them is bad or gone.

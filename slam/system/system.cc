@@ -1,6 +1,7 @@
 #include "slam/system/system.h"
 
 #include <chrono>
+#include <map>
 
 #include <opencv2/imgproc.hpp>
 
@@ -17,17 +18,34 @@ double ms_between(std::chrono::steady_clock::time_point a,
 }
 
 // Camera pose of a trajectory entry, following culled references up the
-// spanning tree (ORB-SLAM2's way of letting corrections reach every frame).
-bool resolve(const TrajectoryEntry& e, Pose& T_wc) {
+// spanning tree (ORB-SLAM2's way of letting corrections reach every frame);
+// the keyframe it ends at names the entry's map. Null without a reference.
+const KeyFrame* resolve(const TrajectoryEntry& e, Pose& T_wc) {
   KeyFrame* ref = e.reference;
-  if (!ref) return false;
+  if (!ref) return nullptr;
   Pose T_cr = e.T_cr;
   while (ref->bad && ref->parent()) {
     T_cr = T_cr * ref->T_cp;
     ref = ref->parent();
   }
   T_wc = (T_cr * ref->T_cw).inverse();
-  return true;
+  return ref;
+}
+
+// The atlas map holding most tracked frames (the oldest on a tie), -1 when
+// none is tracked. Caller holds the map lock.
+int main_map(const std::vector<TrajectoryEntry>& entries) {
+  std::map<int, size_t> frames;
+  for (const TrajectoryEntry& e : entries) {
+    Pose T_wc;
+    if (!is_tracked(e.state)) continue;
+    if (const KeyFrame* ref = resolve(e, T_wc)) ++frames[ref->map_id];
+  }
+  int best = -1;
+  size_t most = 0;
+  for (const auto& [id, n] : frames)
+    if (n > most) best = id, most = n;
+  return best;
 }
 
 }  // namespace
@@ -172,7 +190,9 @@ void System::load_map(const std::string& path) {
 void System::save_map(const std::string& path) const {
   std::lock_guard<std::mutex> lock(map_.mutex());
   if (map_.n_keyframes() == 0) fail(path, "no map to save: no frame was tracked");
-  save_map_file(map_, settings_.camera, levels_, vocabulary_identity(places_.vocabulary()), path);
+  // The main map of the atlas: the others are in frames of their own.
+  save_map_file(map_, settings_.camera, levels_, vocabulary_identity(places_.vocabulary()), path,
+                main_map(tracker_.trajectory()));
 }
 
 void System::start_localisation() {
@@ -186,26 +206,56 @@ void System::start_localisation() {
 
 std::vector<StampedPose> System::trajectory() const {
   std::lock_guard<std::mutex> lock(map_.mutex());
+  const int main = main_map(tracker_.trajectory());
   std::vector<StampedPose> out;
   for (const TrajectoryEntry& e : tracker_.trajectory()) {
     Pose T_wc;
-    if (is_tracked(e.state) && resolve(e, T_wc)) out.push_back({e.timestamp, T_wc});
+    if (!is_tracked(e.state)) continue;
+    const KeyFrame* ref = resolve(e, T_wc);
+    if (ref && ref->map_id == main) out.push_back({e.timestamp, T_wc});
   }
   return out;
 }
 
 std::vector<StampedFrameState> System::frame_states() const {
+  std::lock_guard<std::mutex> lock(map_.mutex());
+  const int main = main_map(tracker_.trajectory());
   std::vector<StampedFrameState> out;
-  for (const TrajectoryEntry& e : tracker_.trajectory()) out.push_back({e.timestamp, e.state});
+  for (const TrajectoryEntry& e : tracker_.trajectory()) {
+    FrameState state = e.state;
+    Pose T_wc;
+    if (is_tracked(state)) {
+      const KeyFrame* ref = resolve(e, T_wc);
+      if (!ref || ref->map_id != main) state = FrameState::kOtherMap;
+    }
+    out.push_back({e.timestamp, state});
+  }
+  return out;
+}
+
+std::vector<AtlasPose> System::atlas_trajectory() const {
+  std::lock_guard<std::mutex> lock(map_.mutex());
+  std::vector<AtlasPose> out;
+  for (const TrajectoryEntry& e : tracker_.trajectory()) {
+    Pose T_wc;
+    if (!is_tracked(e.state)) continue;
+    if (const KeyFrame* ref = resolve(e, T_wc)) out.push_back({{e.timestamp, T_wc}, ref->map_id});
+  }
   return out;
 }
 
 std::vector<StampedPose> System::keyframe_trajectory() const {
   std::lock_guard<std::mutex> lock(map_.mutex());
+  const int main = main_map(tracker_.trajectory());
   std::vector<StampedPose> out;
   for (KeyFrame* kf : map_.keyframes())
-    if (!kf->bad) out.push_back({kf->timestamp, kf->T_cw.inverse()});
+    if (!kf->bad && kf->map_id == main) out.push_back({kf->timestamp, kf->T_cw.inverse()});
   return out;
+}
+
+int System::maps() const {
+  std::lock_guard<std::mutex> lock(map_.mutex());
+  return static_cast<int>(map_.map_ids().size());
 }
 
 size_t System::n_keyframes() const {

@@ -35,6 +35,12 @@ struct FrameTiming {
   double total_ms = 0;
 };
 
+// A tracked frame's pose in the coordinate frame of its atlas map.
+struct AtlasPose {
+  StampedPose pose;
+  int map_id = 0;
+};
+
 struct TrackResult {
   TrackingState state = TrackingState::kNotInitialized;
   Pose T_wc = Pose::Identity();  // valid when state is OK or RELOCALIZED
@@ -78,19 +84,27 @@ class System {
   void start_localisation();
 
   // Camera-to-world pose of every tracked frame (state NEW_MAP, OK or
-  // RELOCALIZED, tracking_state.h) in the current map. Frames without a pose
-  // (not initialised, lost, or tracked in a map a reset abandoned) are left
-  // out: frame_states() says what became of them.
+  // RELOCALIZED, tracking_state.h) in the main map of the atlas (the one
+  // holding most tracked frames, after merges). Frames without a pose (not
+  // initialised, lost, tracked in a map a reset abandoned or in another map
+  // of the atlas) are left out: frame_states() says what became of them.
   std::vector<StampedPose> trajectory() const;
   // The state of every frame given so far, in order: one entry per track()
-  // call. Its tracked entries are the trajectory's frames.
+  // call. Its tracked entries are the trajectory's frames; frames tracked
+  // in another map of the atlas are OTHER_MAP.
   std::vector<StampedFrameState> frame_states() const;
+  // Every frame tracked in any map of the atlas, each in its map's frame.
+  std::vector<AtlasPose> atlas_trajectory() const;
+  // Keyframes of the main map.
   std::vector<StampedPose> keyframe_trajectory() const;
+  // Maps in the atlas (those with keyframes).
+  int maps() const;
   size_t n_keyframes() const;
   size_t n_map_points() const;
   LocalMapperStats mapping_stats() const { return mapper_.stats(); }
   std::vector<LoopClosure> loop_closures() const { return loop_closer_.closures(); }
   int loops_refused() const { return loop_closer_.refused(); }
+  int merges_unconfirmed() const { return loop_closer_.unconfirmed_merges(); }
   // Global bundle adjustments applied after loops.
   int global_adjustments() const { return loop_closer_.global_adjustments(); }
   const SlamSettings& settings() const { return settings_; }

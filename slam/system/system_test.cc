@@ -18,6 +18,7 @@ TEST(SystemStates, TheTrajectoryHoldsTrackedFramesOnlyAndEveryFrameHasAState) {
   const test::RealFrame real = test::load_real_frame();
   SlamSettings settings;  // TUM fr3, the frame's camera
   settings.threaded_mapping = false;
+  settings.tracker.atlas = false;  // ORB-SLAM2: young maps are reset
   System system(settings);
   const cv::Mat covered(real.bgr.size(), CV_8UC3, cv::Scalar::all(90));
   const cv::Mat no_depth(real.depth.size(), CV_32F, cv::Scalar(0));
@@ -62,6 +63,66 @@ TEST(SystemStates, TheTrajectoryHoldsTrackedFramesOnlyAndEveryFrameHasAState) {
     EXPECT_LT(test::rotation_error_deg(trajectory[k].pose, truth), 0.1) << "frame " << 4 + k;
     EXPECT_LT(trajectory[k].pose.translation().norm(), 0.01) << "frame " << 4 + k;
   }
+}
+
+// The atlas: frames tracked in a map that never joins the main one are
+// OTHER_MAP and stay out of the trajectory, which is in the main map's frame.
+TEST(SystemStates, FramesOfAnotherMapOfTheAtlasAreNamedAndLeftOut) {
+  if (!std::filesystem::exists(test::real_frame_folder()))
+    GTEST_SKIP() << "shared data missing: " << test::real_frame_folder();
+  const test::RealFrame real = test::load_real_frame();
+  SlamSettings settings;
+  settings.threaded_mapping = false;
+  System system(settings);
+  const cv::Mat covered(real.bgr.size(), CV_8UC3, cv::Scalar::all(90));
+  const cv::Mat no_depth(real.depth.size(), CV_32F, cv::Scalar(0));
+  cv::Mat mirrored_bgr, mirrored_depth;  // a place the first map never saw
+  cv::flip(real.bgr, mirrored_bgr, 1);
+  cv::flip(real.depth, mirrored_depth, 1);
+  double t = 10.0;
+  auto track_view = [&](double yaw) {
+    const test::RealFrame v = test::turned_view(real, settings.camera, test::turn(yaw));
+    return system.track(v.bgr, v.depth, t += 0.1).state;
+  };
+  EXPECT_EQ(track_view(0), TrackingState::kOk);
+  EXPECT_EQ(track_view(1), TrackingState::kOk);
+  EXPECT_EQ(system.track(covered, no_depth, t += 0.1).state, TrackingState::kLost);
+  EXPECT_EQ(system.track(mirrored_bgr, mirrored_depth, t += 0.1).state, TrackingState::kOk);
+  EXPECT_EQ(system.track(mirrored_bgr, mirrored_depth, t += 0.1).state, TrackingState::kOk);
+  EXPECT_EQ(system.track(covered, no_depth, t += 0.1).state, TrackingState::kLost);
+  EXPECT_EQ(track_view(2), TrackingState::kRelocalized);
+  EXPECT_EQ(track_view(3), TrackingState::kOk);
+  EXPECT_EQ(track_view(4), TrackingState::kOk);
+  system.finish();
+  EXPECT_EQ(system.resets(), 0);
+  EXPECT_EQ(system.maps(), 2);
+
+  const std::vector<FrameState> expected = {
+      FrameState::kNewMap,      FrameState::kOk,       FrameState::kLost,
+      FrameState::kOtherMap,    FrameState::kOtherMap, FrameState::kLost,
+      FrameState::kRelocalized, FrameState::kOk,       FrameState::kOk};
+  const std::vector<StampedFrameState> states = system.frame_states();
+  ASSERT_EQ(states.size(), expected.size());
+  for (size_t i = 0; i < states.size(); ++i)
+    EXPECT_EQ(states[i].state, expected[i])
+        << "frame " << i << ": " << frame_state_name(states[i].state);
+  // The trajectory: the main map's five frames, in its frame (view 0 is the origin).
+  const std::vector<StampedPose> trajectory = system.trajectory();
+  const std::vector<double> yaws = {0, 1, 2, 3, 4};
+  ASSERT_EQ(trajectory.size(), yaws.size());
+  for (size_t k = 0; k < yaws.size(); ++k) {
+    const Pose truth =
+        (test::turned_pose(test::turn(yaws[k])) * test::turned_pose(test::turn(0)).inverse())
+            .inverse();
+    EXPECT_LT(test::rotation_error_deg(trajectory[k].pose, truth), 0.1) << "yaw " << yaws[k];
+    EXPECT_LT(trajectory[k].pose.translation().norm(), 0.01) << "yaw " << yaws[k];
+  }
+  // Every tracked frame, each in its own map.
+  const std::vector<AtlasPose> atlas = system.atlas_trajectory();
+  ASSERT_EQ(atlas.size(), 7u);
+  EXPECT_EQ(atlas[2].map_id, atlas[3].map_id);
+  EXPECT_NE(atlas[2].map_id, atlas[0].map_id);
+  EXPECT_EQ(atlas[4].map_id, atlas[0].map_id);
 }
 
 }  // namespace

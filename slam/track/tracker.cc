@@ -76,6 +76,30 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
                 : TrackingState::kLost;
     frame_state =
         ok ? (relocalized ? FrameState::kRelocalized : FrameState::kOk) : FrameState::kLost;
+    const bool lost_before = local.method == TrackingMethod::kRelocalization;
+    if (!ok && lost_before && params_.atlas && !localisation_only_ && !must_relocalise_ &&
+        can_initialize(frame)) {
+      // Lost, and no map knows this place: a new map starts here; the old
+      // ones stay for loop closing to merge.
+      std::fill(frame.map_points.begin(), frame.map_points.end(), nullptr);
+      std::fill(frame.outlier.begin(), frame.outlier.end(), false);
+      map_.begin_map();
+      has_velocity_ = false;
+      ok = initialize(frame);
+      frame_state = FrameState::kNewMap;
+      local.method = TrackingMethod::kInitialization;
+      local.new_keyframe = true;
+      local.inliers = 0;
+      for (MapPoint* p : frame.map_points) local.inliers += p != nullptr;
+      lost_in_a_row_ = 0;
+      trajectory_.push_back({frame.timestamp, frame.reference, Pose::Identity(), frame_state});
+      reset_wanted_ = false;
+      last_ = std::move(frame);
+      last_T_cr_ = Pose::Identity();
+      current_stats_ = nullptr;
+      if (stats) *stats = local;
+      return state_;
+    }
     if (ok) {
       velocity_ = frame.T_cw * last_.T_cw.inverse();
       has_velocity_ = last_.has_pose;
@@ -99,8 +123,8 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
   else
     trajectory_.push_back({frame.timestamp, nullptr, Pose::Identity(), frame_state});
   lost_in_a_row_ = state_ == TrackingState::kLost ? lost_in_a_row_ + 1 : 0;
-  const size_t keyframes = map_.n_keyframes();
-  reset_wanted_ = !localisation_only_ && state_ == TrackingState::kLost &&
+  const size_t keyframes = map_.n_keyframes_in(map_.active_map());
+  reset_wanted_ = !params_.atlas && !localisation_only_ && state_ == TrackingState::kLost &&
                   (keyframes <= static_cast<size_t>(params_.reset_keyframes) ||
                    (keyframes < static_cast<size_t>(params_.young_map_keyframes) &&
                     lost_in_a_row_ >= params_.young_map_lost_frames));
@@ -119,6 +143,7 @@ void Tracker::relocalise_in_map() {
   lost_in_a_row_ = 0;
   if (map_.n_keyframes() == 0) return;  // nothing to relocalise against
   state_ = TrackingState::kLost;
+  must_relocalise_ = true;
   has_velocity_ = false;
   last_ = Frame();
   reference_ = nullptr;
@@ -144,11 +169,15 @@ void Tracker::reset() {
   }
 }
 
-bool Tracker::initialize(Frame& frame) {
+bool Tracker::can_initialize(const Frame& frame) const {
   // As ORB-SLAM2: enough keypoints overall, and points only where depth is known.
   int with_depth = 0;
   for (size_t i = 0; i < frame.size(); ++i) with_depth += frame.features.has_depth(i);
-  if (static_cast<int>(frame.size()) < params_.min_init_points || with_depth < 100) return false;
+  return static_cast<int>(frame.size()) >= params_.min_init_points && with_depth >= 100;
+}
+
+bool Tracker::initialize(Frame& frame) {
+  if (!can_initialize(frame)) return false;
   frame.T_cw = Pose::Identity();
   frame.has_pose = true;
   KeyFrame* kf = map_.create_keyframe(frame);
@@ -278,6 +307,9 @@ bool Tracker::relocalize(Frame& frame, int& matches) {
       discard_outliers(frame);
     }
     if (good >= params_.relocalisation_min_inliers) {
+      // Found in another map of the atlas: tracking goes on in that one.
+      map_.activate(kf->map_id);
+      must_relocalise_ = false;
       reference_ = kf;
       last_reloc_frame_ = frame.id;
       return true;
@@ -378,7 +410,7 @@ bool Tracker::track_local_map(Frame& frame, int& inliers, int& n_local) {
 }
 
 bool Tracker::need_keyframe(const Frame& frame, int inliers) const {
-  const int n_kfs = static_cast<int>(map_.n_keyframes());
+  const int n_kfs = static_cast<int>(map_.n_keyframes_in(map_.active_map()));
   if (frame.id < last_reloc_frame_ + params_.max_frames_between_kf &&
       n_kfs > params_.max_frames_between_kf)
     return false;

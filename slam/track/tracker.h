@@ -45,6 +45,11 @@ struct TrackerParams {
   int reset_keyframes = 5;
   int young_map_keyframes = 10;
   int young_map_lost_frames = 30;  // ~1 s at 30 Hz
+  // The atlas (ORB-SLAM3, map.h): a lost camera that cannot relocalise in
+  // any map starts a new map on that frame (when it has the points to), and
+  // no map is ever reset: loop closing merges maps that share a place. Off:
+  // ORB-SLAM2's behaviour (stay lost; reset young maps as above).
+  bool atlas = true;
 };
 
 // How the frame's pose was first found (before local-map tracking).
@@ -90,7 +95,7 @@ class Tracker {
   TrackingState state() const { return state_; }
   // True when the last frame was lost while the map was still tiny, or has
   // been lost for a while in a young map (TrackerParams): the system should
-  // reset and initialise again.
+  // reset and initialise again. Never with the atlas.
   // Decided inside track() under the map lock (the mapper may cull
   // keyframes meanwhile), so it needs no lock.
   bool wants_reset() const { return reset_wanted_; }
@@ -99,7 +104,8 @@ class Tracker {
   // the map lock and clears the map.
   void reset();
   // The next frame relocalises against the map as it is (a loaded map),
-  // anywhere in it, instead of starting one. The caller holds the map lock.
+  // anywhere in it, instead of starting one; the atlas starts no new map
+  // before one has. The caller holds the map lock.
   void relocalise_in_map();
   // Localisation only: no keyframes or points are made and a lost camera
   // never resets the map.
@@ -111,6 +117,8 @@ class Tracker {
   const std::vector<TrajectoryEntry>& trajectory() const { return trajectory_; }
 
  private:
+  // Enough keypoints, and enough with depth, to start a map on.
+  bool can_initialize(const Frame& frame) const;
   bool initialize(Frame& frame);
   // Points of the last frame that local mapping fused into others are
   // replaced by their survivors (ORB-SLAM2's CheckReplacedInLastFrame).
@@ -134,6 +142,9 @@ class Tracker {
   bool reset_wanted_ = false;
   int lost_in_a_row_ = 0;  // frames lost since the last tracked one
   bool localisation_only_ = false;
+  // Set by relocalise_in_map(): until a frame relocalises in the given map,
+  // no new map is started (poses are wanted in that map's frame).
+  bool must_relocalise_ = false;
   Frame last_;
   Pose last_T_cr_ = Pose::Identity();  // last frame relative to its reference keyframe
   Pose velocity_ = Pose::Identity();

@@ -17,6 +17,13 @@
 namespace depot::slam {
 namespace {
 
+// ORB-SLAM2's tracker (no atlas): most fixtures below test its states.
+TrackerParams without_atlas() {
+  TrackerParams p;
+  p.atlas = false;
+  return p;
+}
+
 class TrackerTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -83,9 +90,21 @@ class TrackerTest : public ::testing::Test {
   Map map_;
   KeyFrameDatabase places_{load_vocabulary_shared(default_vocabulary_path())};
   LocalMapper mapper_{map_, false, &places_};
+  // A place the map has never seen: the frame mirrored (ORB is not mirror
+  // invariant, so nothing in the map matches it).
+  TrackingStats track_mirrored() {
+    cv::Mat bgr, depth;
+    cv::flip(real_.bgr, bgr, 1);
+    cv::flip(real_.depth, depth, 1);
+    TrackingStats stats;
+    tracker_.track(make_frame(bgr, depth), &stats);
+    mapper_.run_pending();
+    return stats;
+  }
+
   // The parameters the next fixture's tracker gets (a derived fixture sets
   // them in SetUpTestSuite).
-  static inline TrackerParams params_for_next_;
+  static inline TrackerParams params_for_next_ = without_atlas();
   Tracker tracker_{map_, mapper_, params_for_next_, &places_};
   long next_id_ = 0;
   double map_start_yaw_ = 0;  // yaw of the view the current map started on
@@ -230,7 +249,7 @@ class YoungMapTrackerTest : public TrackerTest {
     params_for_next_.young_map_keyframes = 10;
     params_for_next_.young_map_lost_frames = 3;
   }
-  static void TearDownTestSuite() { params_for_next_ = TrackerParams(); }
+  static void TearDownTestSuite() { params_for_next_ = without_atlas(); }
 };
 
 TEST_F(YoungMapTrackerTest, AYoungMapLostForAWhileIsReset) {
@@ -259,7 +278,7 @@ class GrownMapTrackerTest : public TrackerTest {
     params_for_next_.young_map_keyframes = 1;
     params_for_next_.young_map_lost_frames = 3;
   }
-  static void TearDownTestSuite() { params_for_next_ = TrackerParams(); }
+  static void TearDownTestSuite() { params_for_next_ = without_atlas(); }
 };
 
 TEST_F(GrownMapTrackerTest, AGrownMapIsNeverResetForBeingLost) {
@@ -268,6 +287,47 @@ TEST_F(GrownMapTrackerTest, AGrownMapIsNeverResetForBeingLost) {
   for (int k = 0; k < 5; ++k) track_covered();
   EXPECT_EQ(tracker_.state(), TrackingState::kLost);
   EXPECT_FALSE(tracker_.wants_reset());
+}
+
+// The atlas: a lost camera that cannot relocalise starts a new map at once
+// and keeps the old one, which relocalisation still searches.
+class AtlasTrackerTest : public TrackerTest {
+ public:
+  static void SetUpTestSuite() { params_for_next_.atlas = true; }
+  static void TearDownTestSuite() { params_for_next_ = without_atlas(); }
+};
+
+TEST_F(AtlasTrackerTest, ALostCameraStartsANewMapAndFindsTheOldOneAgain) {
+  track_view(0);
+  track_view(1);
+  const size_t first_map_keyframes = map_.n_keyframes_in(0);
+  ASSERT_GE(first_map_keyframes, 1u);
+  track_covered();
+  EXPECT_EQ(tracker_.state(), TrackingState::kLost);
+  EXPECT_FALSE(tracker_.wants_reset()) << "the atlas resets nothing";
+  // Still covered: nothing to start a map on.
+  EXPECT_EQ(track_covered().method, TrackingMethod::kRelocalization);
+  EXPECT_EQ(tracker_.state(), TrackingState::kLost);
+  // A place no map knows: a new map starts on this frame.
+  EXPECT_EQ(track_mirrored().method, TrackingMethod::kInitialization);
+  EXPECT_EQ(tracker_.state(), TrackingState::kOk);
+  EXPECT_EQ(map_.active_map(), 1);
+  EXPECT_EQ(map_.n_keyframes_in(1), 1u);
+  EXPECT_EQ(map_.n_keyframes_in(0), first_map_keyframes) << "the old map is kept";
+  EXPECT_TRUE(map_.first_keyframe_in(1)->map_origin);
+  // Lost again, then back where the first map was made: relocalised in it
+  // (at the right pose, track_view checks), and tracking goes on there.
+  track_covered();
+  map_start_yaw_ = 0;
+  EXPECT_EQ(track_view(1).method, TrackingMethod::kRelocalization);
+  EXPECT_EQ(tracker_.state(), TrackingState::kRelocalized);
+  EXPECT_EQ(map_.active_map(), 0);
+  track_view(2);
+  EXPECT_EQ(tracker_.state(), TrackingState::kOk);
+  EXPECT_EQ(states(),
+            (std::vector<FrameState>{FrameState::kNewMap, FrameState::kOk, FrameState::kLost,
+                                     FrameState::kLost, FrameState::kNewMap, FrameState::kLost,
+                                     FrameState::kRelocalized, FrameState::kOk}));
 }
 
 }  // namespace

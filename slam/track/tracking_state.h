@@ -18,6 +18,10 @@
 //                    a later reset threw away (lost within the first keyframes):
 //                    its pose belongs to a discarded coordinate frame, so it
 //                    left the trajectory
+//   OTHER_MAP        was tracked, in a map of the atlas (slam/data/map.h) that
+//                    was never merged into the main one (the map holding most
+//                    tracked frames): its pose is in another coordinate frame,
+//                    so it is not in the trajectory either
 // The tracked share of a run is tracked frames / frames given.
 #include <optional>
 #include <string>
@@ -40,7 +44,7 @@ inline const char* tracking_state_name(TrackingState s) {
   return "?";
 }
 
-enum class FrameState { kNotInitialized, kNewMap, kOk, kRelocalized, kLost, kAbandoned };
+enum class FrameState { kNotInitialized, kNewMap, kOk, kRelocalized, kLost, kAbandoned, kOtherMap };
 
 inline const char* frame_state_name(FrameState s) {
   switch (s) {
@@ -56,14 +60,17 @@ inline const char* frame_state_name(FrameState s) {
       return "LOST";
     case FrameState::kAbandoned:
       return "ABANDONED";
+    case FrameState::kOtherMap:
+      return "OTHER_MAP";
   }
   return "?";
 }
 
 // The state named as frame_state_name() writes it; nothing for another word.
 inline std::optional<FrameState> parse_frame_state(const std::string& name) {
-  for (FrameState s : {FrameState::kNotInitialized, FrameState::kNewMap, FrameState::kOk,
-                       FrameState::kRelocalized, FrameState::kLost, FrameState::kAbandoned})
+  for (FrameState s :
+       {FrameState::kNotInitialized, FrameState::kNewMap, FrameState::kOk, FrameState::kRelocalized,
+        FrameState::kLost, FrameState::kAbandoned, FrameState::kOtherMap})
     if (name == frame_state_name(s)) return s;
   return std::nullopt;
 }

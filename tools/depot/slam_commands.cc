@@ -197,15 +197,25 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
         s.filter_ms, s.flow_ms, s.wait_ms, s.wait_p95_ms,
         s.detector_name.empty() ? "(no)" : s.detector_name.c_str(), s.detect_ms);
   std::printf("); wrote %s and %s\n", a.output.c_str(), states_path.c_str());
-  std::printf("loops closed: %zu", s.loops.size());
-  for (const slam::LoopClosure& l : s.loops)
+  std::vector<slam::LoopClosure> loops, merges;
+  for (const slam::LoopClosure& l : s.loops) (l.merge ? merges : loops).push_back(l);
+  std::printf("loops closed: %zu", loops.size());
+  for (const slam::LoopClosure& l : loops)
     std::printf("%s keyframe %ld (t %.2f) with %ld, %d matches, moved %.3f m after %.1f m",
-                &l == &s.loops.front() ? " (" : "; ", l.keyframe, l.timestamp, l.matched, l.matches,
+                &l == &loops.front() ? " (" : "; ", l.keyframe, l.timestamp, l.matched, l.matches,
                 l.correction_m, l.path_m);
   std::printf(
       "%s, %d global bundle adjustments, %d look-alike places refused; relocalisation median "
       "%.1f ms over %d lost frames\n",
-      s.loops.empty() ? "" : ")", s.global_adjustments, s.loops_refused, s.lost_ms, s.lost);
+      loops.empty() ? "" : ")", s.global_adjustments, s.loops_refused, s.lost_ms, s.lost);
+  std::printf("atlas: %d map%s left, %zu merge%s", s.maps, s.maps == 1 ? "" : "s", merges.size(),
+              merges.size() == 1 ? "" : "s");
+  for (const slam::LoopClosure& l : merges)
+    std::printf("%s keyframe %ld (t %.2f) with %ld, %d matches: map %d (%d keyframes) into map %d",
+                &l == &merges.front() ? " (" : "; ", l.keyframe, l.timestamp, l.matched, l.matches,
+                l.moved_map, l.moved_keyframes, l.into_map);
+  std::printf("%s, %d not confirmed by the keyframe's neighbours\n", merges.empty() ? "" : ")",
+              s.merges_unconfirmed);
   if (!a.options.dense_map.empty())
     std::printf("dense map: %zu points from %d keyframes (masks: %s%s%s), wrote %s\n",
                 s.dense_points, s.dense_keyframes, a.options.dense_mask.c_str(),

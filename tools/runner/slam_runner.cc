@@ -457,6 +457,8 @@ RunSummary run_sequence(const RunOptions& o) {
   summary.loops = system.loop_closures();
   summary.loops_refused = system.loops_refused();
   summary.global_adjustments = system.global_adjustments();
+  summary.maps = system.maps();
+  summary.merges_unconfirmed = system.merges_unconfirmed();
   if (stats) stats->commit();
   if (keypoint_rows) keypoint_rows->commit();
   if (overlays) {

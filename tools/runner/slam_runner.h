@@ -109,6 +109,8 @@ struct RunSummary {
   std::vector<slam::LoopClosure> loops;
   int loops_refused = 0;       // look-alike places refused by the plausibility test
   int global_adjustments = 0;  // global bundle adjustments applied after loops
+  int maps = 0;                // maps left in the atlas (slam/data/map.h)
+  int merges_unconfirmed = 0;  // merges the keyframe's neighbours did not confirm
   // With rate_hz: frames whose turn (the arrival of frame i, or of frame i+1
   // with run-ahead) had passed when the loop got to them: the tracker lagged.
   size_t late_frames = 0;
