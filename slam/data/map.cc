@@ -74,4 +74,21 @@ void Map::clear() {
   keyframes_.clear();
 }
 
+std::vector<KeyFrame*> Map::discard_map(int map_id) {
+  std::vector<KeyFrame*> discarded = keyframes_in(map_id);
+  for (KeyFrame* kf : discarded) {
+    kf->bad = true;
+    keyframes_.erase(kf);
+  }
+  for (auto it = map_points_.begin(); it != map_points_.end();) {
+    if ((*it)->map_id != map_id) {
+      ++it;
+      continue;
+    }
+    (*it)->bad = true;
+    it = map_points_.erase(it);
+  }
+  return discarded;
+}
+
 }  // namespace depot::slam

@@ -68,6 +68,9 @@ class Map {
   // Forgets every keyframe and point (they turn bad; memory stays, so old
   // pointers remain valid). Used when tracking is lost right after start.
   void clear();
+  // Forgets one map's keyframes and points the same way (a young map lost
+  // right after its start); the others stay. Returns its keyframes.
+  std::vector<KeyFrame*> discard_map(int map_id);
 
   std::mutex& mutex() { return mutex_; }
   // All keyframes ever created (for the trajectory, bad ones included).

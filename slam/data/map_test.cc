@@ -72,5 +72,21 @@ TEST(Atlas, AMergeMovesOneMapRigidlyIntoTheOthersFrame) {
   EXPECT_LT((b0->T_cw * p->position - T_01.inverse() * point_in_0).norm(), 1e-12);
 }
 
+TEST(Atlas, DiscardingAMapLeavesTheOthersAsTheyWere) {
+  Map map;
+  KeyFrame* a0 = add_keyframe(map, Pose::Identity());
+  MapPoint* pa = map.create_map_point({0, 0, 3}, a0);
+  map.begin_map();
+  KeyFrame* b0 = add_keyframe(map, Pose::Identity());
+  KeyFrame* b1 = add_keyframe(map, pose(0.1, {0.2, 0, 0}));
+  MapPoint* pb = map.create_map_point({1, 0, 3}, b1);
+  EXPECT_EQ(map.discard_map(1), (std::vector<KeyFrame*>{b0, b1}));
+  EXPECT_TRUE(b0->bad && b1->bad && pb->bad);
+  EXPECT_FALSE(a0->bad || pa->bad);
+  EXPECT_EQ(map.map_ids(), (std::vector<int>{0}));
+  EXPECT_EQ(map.n_keyframes(), 1u);
+  EXPECT_EQ(map.n_map_points(), 1u);
+}
+
 }  // namespace
 }  // namespace depot::slam

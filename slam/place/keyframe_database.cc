@@ -47,9 +47,10 @@ size_t KeyFrameDatabase::size() const {
   return n_keyframes_;
 }
 
-std::vector<KeyFrame*> KeyFrameDatabase::relocalisation_candidates(Frame& frame) const {
+std::vector<KeyFrame*> KeyFrameDatabase::relocalisation_candidates(Frame& frame,
+                                                                   int skip_map) const {
   describe(frame);
-  return candidates(frame.bow, nullptr, 0);
+  return candidates(frame.bow, nullptr, 0, skip_map);
 }
 
 std::vector<KeyFrame*> KeyFrameDatabase::loop_candidates(const KeyFrame& kf,
@@ -58,7 +59,7 @@ std::vector<KeyFrame*> KeyFrameDatabase::loop_candidates(const KeyFrame& kf,
 }
 
 std::vector<KeyFrame*> KeyFrameDatabase::candidates(const BowVector& bow, const KeyFrame* query,
-                                                    double min_score) const {
+                                                    double min_score, int skip_map) const {
   // Keyframes sharing words with the query, and how many.
   std::unordered_map<KeyFrame*, int> shared;
   {
@@ -70,6 +71,8 @@ std::vector<KeyFrame*> KeyFrameDatabase::candidates(const BowVector& bow, const 
     }
   }
   std::set<const KeyFrame*> connected;
+  for (const auto& [kf, n] : shared)
+    if (kf->map_id == skip_map) connected.insert(kf);
   if (query) {
     connected.insert(query);
     for (KeyFrame* c : query->covisibles()) connected.insert(c);

@@ -36,7 +36,9 @@ class KeyFrameDatabase {
   // least 80 % of the most words any keyframe shares with it, grouped with
   // their ten best covisibles; groups scoring at least 75 % of the best
   // group give their best keyframe. Describes the frame if needed.
-  std::vector<KeyFrame*> relocalisation_candidates(Frame& frame) const;
+  // Keyframes of the atlas map `skip_map` (map.h) are left out, before the
+  // shares above are taken.
+  std::vector<KeyFrame*> relocalisation_candidates(Frame& frame, int skip_map = -1) const;
 
   // Keyframes that may close a loop with `kf`: as above, but only those not
   // connected to kf in the covisibility graph, and scoring at least
@@ -48,8 +50,8 @@ class KeyFrameDatabase {
     KeyFrame* kf;
     double score;
   };
-  std::vector<KeyFrame*> candidates(const BowVector& bow, const KeyFrame* query,
-                                    double min_score) const;
+  std::vector<KeyFrame*> candidates(const BowVector& bow, const KeyFrame* query, double min_score,
+                                    int skip_map = -1) const;
 
   std::shared_ptr<const Vocabulary> vocabulary_;
   mutable std::mutex mutex_;

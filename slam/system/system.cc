@@ -149,9 +149,13 @@ TrackResult System::track(const cv::Mat& bgr, const cv::Mat& depth, double times
     mapper_.reset();
     loop_closer_.reset();
     std::lock_guard<std::mutex> lock(map_.mutex());
-    map_.clear();
-    places_.clear();
-    tracker_.reset();
+    if (settings_.tracker.atlas) {
+      tracker_.discard_active_map();  // the atlas's other maps stay
+    } else {
+      map_.clear();
+      places_.clear();
+      tracker_.reset();
+    }
     ++resets_;
   }
   auto t3 = std::chrono::steady_clock::now();

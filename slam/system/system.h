@@ -105,6 +105,8 @@ class System {
   std::vector<LoopClosure> loop_closures() const { return loop_closer_.closures(); }
   int loops_refused() const { return loop_closer_.refused(); }
   int merges_unconfirmed() const { return loop_closer_.unconfirmed_merges(); }
+  // Young maps merged into an older one because a frame relocalised there.
+  int maps_rejoined() const { return tracker_.rejoined(); }
   // Global bundle adjustments applied after loops.
   int global_adjustments() const { return loop_closer_.global_adjustments(); }
   const SlamSettings& settings() const { return settings_; }

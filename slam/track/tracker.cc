@@ -83,7 +83,7 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
       // ones stay for loop closing to merge.
       std::fill(frame.map_points.begin(), frame.map_points.end(), nullptr);
       std::fill(frame.outlier.begin(), frame.outlier.end(), false);
-      map_.begin_map();
+      if (map_.n_keyframes_in(map_.active_map()) > 0) map_.begin_map();
       has_velocity_ = false;
       ok = initialize(frame);
       frame_state = FrameState::kNewMap;
@@ -100,6 +100,7 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
       if (stats) *stats = local;
       return state_;
     }
+    if (ok && params_.atlas && !localisation_only_ && !relocalized) rejoin_older_map(frame);
     if (ok) {
       velocity_ = frame.T_cw * last_.T_cw.inverse();
       has_velocity_ = last_.has_pose;
@@ -124,10 +125,15 @@ TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
     trajectory_.push_back({frame.timestamp, nullptr, Pose::Identity(), frame_state});
   lost_in_a_row_ = state_ == TrackingState::kLost ? lost_in_a_row_ + 1 : 0;
   const size_t keyframes = map_.n_keyframes_in(map_.active_map());
-  reset_wanted_ = !params_.atlas && !localisation_only_ && state_ == TrackingState::kLost &&
-                  (keyframes <= static_cast<size_t>(params_.reset_keyframes) ||
-                   (keyframes < static_cast<size_t>(params_.young_map_keyframes) &&
-                    lost_in_a_row_ >= params_.young_map_lost_frames));
+  // With the atlas only a map lost while tiny is reset (its frames would
+  // otherwise stay behind as a weak map that relocalisation finds first);
+  // a young one is left for a new map and rejoin_older_map.
+  reset_wanted_ =
+      !localisation_only_ && state_ == TrackingState::kLost &&
+      (keyframes <= static_cast<size_t>(params_.reset_keyframes) ||
+       (!params_.atlas && keyframes < static_cast<size_t>(params_.young_map_keyframes) &&
+        lost_in_a_row_ >= params_.young_map_lost_frames)) &&
+      !(params_.atlas && must_relocalise_);
   if (ok) {
     if (frame.reference) last_T_cr_ = frame.T_cw * frame.reference->T_cw.inverse();
     last_ = std::move(frame);
@@ -155,6 +161,14 @@ void Tracker::follow_replaced_points_in_last_frame() {
 }
 
 void Tracker::reset() {
+  forget_motion();
+  for (TrajectoryEntry& e : trajectory_) {
+    e.reference = nullptr;
+    if (is_tracked(e.state)) e.state = FrameState::kAbandoned;
+  }
+}
+
+void Tracker::forget_motion() {
   state_ = TrackingState::kNotInitialized;
   reset_wanted_ = false;
   lost_in_a_row_ = 0;
@@ -163,10 +177,23 @@ void Tracker::reset() {
   reference_ = nullptr;
   local_keyframes_.clear();
   local_points_.clear();
+}
+
+void Tracker::discard_active_map() {
+  const int discarded = map_.active_map();
+  for (KeyFrame* kf : map_.discard_map(discarded))
+    if (places_) places_->erase(kf);
   for (TrajectoryEntry& e : trajectory_) {
+    if (!e.reference || e.reference->map_id != discarded) continue;
     e.reference = nullptr;
     if (is_tracked(e.state)) e.state = FrameState::kAbandoned;
   }
+  const bool others_left = map_.n_keyframes() > 0;
+  forget_motion();
+  map_.begin_map();
+  // With other maps left the next frame looks for itself in them first,
+  // and starts a new map (the lost path) only where it cannot.
+  if (others_left) state_ = TrackingState::kLost;
 }
 
 bool Tracker::can_initialize(const Frame& frame) const {
@@ -259,16 +286,16 @@ bool Tracker::track_reference_keyframe(Frame& frame, int& matches) {
   return discard_outliers(frame) >= 10;
 }
 
-bool Tracker::relocalize(Frame& frame, int& matches) {
+bool Tracker::relocalize(Frame& frame, int& matches, int skip_map) {
   matches = 0;
   if (!places_) return false;
   // Any keyframe of the map that looks like the frame (place recognition),
   // best first; each is tried with BoW-guided matching, PnP RANSAC, pose
   // optimisation and a guided search in its neighbourhood.
-  const std::vector<KeyFrame*> candidates = places_->relocalisation_candidates(frame);
+  const std::vector<KeyFrame*> candidates = places_->relocalisation_candidates(frame, skip_map);
   int tried = 0;
   for (KeyFrame* kf : candidates) {
-    if (kf->bad) continue;
+    if (kf->bad || kf->map_id == skip_map) continue;
     if (tried++ >= params_.relocalisation_candidates) break;
     std::vector<MapPoint*> found;
     int n;
@@ -318,6 +345,36 @@ bool Tracker::relocalize(Frame& frame, int& matches) {
   std::fill(frame.map_points.begin(), frame.map_points.end(), nullptr);
   frame.has_pose = false;
   return false;
+}
+
+void Tracker::rejoin_older_map(Frame& frame) {
+  const int young = map_.active_map();
+  if (map_.n_keyframes_in(young) >= static_cast<size_t>(params_.young_map_keyframes) ||
+      map_.map_ids().size() < 2)
+    return;
+  // The frame is tracked in the young map; if it also relocalises in an
+  // older one, its two poses give the transform between the maps.
+  Frame probe = frame;
+  int matches = 0;
+  if (!relocalize(probe, matches, young)) {
+    reference_ = frame.reference;
+    return;
+  }
+  const int older = map_.active_map();  // relocalize activated it
+  const Pose T_older_young = probe.T_cw.inverse() * frame.T_cw;
+  map_.merge_maps(young, older, T_older_young);
+  ++rejoined_;
+  // The last frame's pose follows its (moved) reference, so the motion
+  // model stays right; tracking goes on with the older map's points.
+  if (last_.has_pose && last_.reference) last_.T_cw = last_T_cr_ * last_.reference->T_cw;
+  int inliers = 0, n_local = 0;
+  probe.reference = reference_;
+  if (track_local_map(probe, inliers, n_local)) {
+    frame = std::move(probe);
+  } else {
+    frame.T_cw = frame.T_cw * T_older_young.inverse();
+    reference_ = frame.reference;
+  }
 }
 
 void Tracker::update_local_map(Frame& frame) {

@@ -93,9 +93,10 @@ class Tracker {
   TrackingState track(Frame frame, TrackingStats* stats = nullptr);
 
   TrackingState state() const { return state_; }
-  // True when the last frame was lost while the map was still tiny, or has
-  // been lost for a while in a young map (TrackerParams): the system should
-  // reset and initialise again. Never with the atlas.
+  // True when the last frame was lost while the map was still tiny, or
+  // (without the atlas) has been lost for a while in a young map
+  // (TrackerParams): the system should reset (with the atlas:
+  // discard_active_map) and initialise again.
   // Decided inside track() under the map lock (the mapper may cull
   // keyframes meanwhile), so it needs no lock.
   bool wants_reset() const { return reset_wanted_; }
@@ -103,6 +104,13 @@ class Tracker {
   // (they belong to the abandoned map: state ABANDONED). The caller holds
   // the map lock and clears the map.
   void reset();
+  // The atlas's reset: only the active map is forgotten (Map::discard_map,
+  // its keyframes leave `places`), its frames become ABANDONED and a new
+  // map begins; other maps keep theirs, and while there are any the next
+  // frame relocalises in them before it starts the new map. The caller
+  // holds the map lock and has cleared local mapping's and loop closing's
+  // queues.
+  void discard_active_map();
   // The next frame relocalises against the map as it is (a loaded map),
   // anywhere in it, instead of starting one; the atlas starts no new map
   // before one has. The caller holds the map lock.
@@ -112,6 +120,8 @@ class Tracker {
   void set_localisation_only(bool on) { localisation_only_ = on; }
   bool localisation_only() const { return localisation_only_; }
   const Frame& last_frame() const { return last_; }
+  // Young maps merged into an older one by rejoin_older_map.
+  int rejoined() const { return rejoined_; }
   // Every frame given so far, in order (tracked or not). Resolving a tracked
   // entry's pose reads its reference keyframe: hold the map lock.
   const std::vector<TrajectoryEntry>& trajectory() const { return trajectory_; }
@@ -122,10 +132,18 @@ class Tracker {
   bool initialize(Frame& frame);
   // Points of the last frame that local mapping fused into others are
   // replaced by their survivors (ORB-SLAM2's CheckReplacedInLastFrame).
+  // Back to NOT_INITIALIZED with no last frame, velocity or local map.
+  void forget_motion();
   void follow_replaced_points_in_last_frame();
   bool track_motion_model(Frame& frame, int& matches);
   bool track_reference_keyframe(Frame& frame, int& matches);
-  bool relocalize(Frame& frame, int& matches);
+  // Relocalises in any map of the atlas but `skip_map`.
+  bool relocalize(Frame& frame, int& matches, int skip_map = -1);
+  // While the active map is young (fewer than young_map_keyframes), a
+  // tracked frame that also relocalises in an older map merges the young
+  // map into it (the frame's two poses give the transform); a camera lost
+  // for a moment so rejoins the map it left.
+  void rejoin_older_map(Frame& frame);
   bool track_local_map(Frame& frame, int& inliers, int& n_local);
   void update_local_map(Frame& frame);
   bool need_keyframe(const Frame& frame, int inliers) const;
@@ -145,6 +163,7 @@ class Tracker {
   // Set by relocalise_in_map(): until a frame relocalises in the given map,
   // no new map is started (poses are wanted in that map's frame).
   bool must_relocalise_ = false;
+  int rejoined_ = 0;
   Frame last_;
   Pose last_T_cr_ = Pose::Identity();  // last frame relative to its reference keyframe
   Pose velocity_ = Pose::Identity();

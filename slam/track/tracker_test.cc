@@ -291,11 +291,75 @@ TEST_F(GrownMapTrackerTest, AGrownMapIsNeverResetForBeingLost) {
 
 // The atlas: a lost camera that cannot relocalise starts a new map at once
 // and keeps the old one, which relocalisation still searches.
+// The atlas with maps of one or two keyframes kept when lost (a real run
+// discards maps that small; AtlasDiscardTest).
 class AtlasTrackerTest : public TrackerTest {
  public:
-  static void SetUpTestSuite() { params_for_next_.atlas = true; }
+  static void SetUpTestSuite() {
+    params_for_next_.atlas = true;
+    params_for_next_.reset_keyframes = 0;
+  }
   static void TearDownTestSuite() { params_for_next_ = without_atlas(); }
 };
+
+// The atlas discarding a map lost while tiny (here: one keyframe).
+class AtlasDiscardTest : public TrackerTest {
+ public:
+  static void SetUpTestSuite() {
+    params_for_next_.atlas = true;
+    params_for_next_.reset_keyframes = 1;
+  }
+  static void TearDownTestSuite() { params_for_next_ = without_atlas(); }
+
+  // What System does when the tracker wants a reset.
+  void discard_if_wanted() {
+    if (!tracker_.wants_reset()) return;
+    mapper_.reset();
+    tracker_.discard_active_map();
+  }
+};
+
+TEST_F(AtlasDiscardTest, ATinyLostMapIsForgottenAndTheOlderOneKept) {
+  track_view(0);
+  // Four fifths of the view hidden by a new, near textured surface: close
+  // points the map lacks, so the frame becomes the map's second keyframe.
+  test::RealFrame partly = test::turned_view(real_, camera_, test::turn(1));
+  const int cover = 4 * partly.bgr.cols / 5;
+  cv::Mat texture(partly.bgr.rows, cover, CV_8UC3);
+  cv::RNG rng(7);
+  rng.fill(texture, cv::RNG::UNIFORM, 0, 256);
+  cv::GaussianBlur(texture, texture, cv::Size(3, 3), 0);
+  texture.copyTo(partly.bgr.colRange(0, cover));
+  partly.depth.colRange(0, cover).setTo(1.2);
+  tracker_.track(make_frame(partly.bgr, partly.depth));
+  mapper_.run_pending();
+  expect_pose(1);
+  track_view(2);
+  const size_t first_map_keyframes = map_.n_keyframes_in(0);
+  ASSERT_GE(first_map_keyframes, 2u) << "the first map must outgrow reset_keyframes";
+  track_covered();
+  EXPECT_FALSE(tracker_.wants_reset()) << "a map of " << first_map_keyframes << " keyframes stays";
+  ASSERT_EQ(track_mirrored().method, TrackingMethod::kInitialization);
+  ASSERT_EQ(map_.active_map(), 1);
+  KeyFrame* tiny = map_.first_keyframe_in(1);
+  track_covered();
+  ASSERT_TRUE(tracker_.wants_reset()) << "a one-keyframe map lost";
+  discard_if_wanted();
+  EXPECT_TRUE(tiny->bad);
+  EXPECT_EQ(map_.map_ids(), (std::vector<int>{0}));
+  EXPECT_EQ(map_.n_keyframes_in(0), first_map_keyframes);
+  EXPECT_EQ(tracker_.state(), TrackingState::kLost) << "other maps are left to relocalise in";
+  // The forgotten map's place is new again: a new map starts there (its
+  // keyframe left place recognition with it).
+  EXPECT_EQ(track_mirrored().method, TrackingMethod::kInitialization);
+  EXPECT_EQ(map_.active_map(), 2);
+  std::vector<FrameState> expected(3, FrameState::kOk);
+  expected[0] = FrameState::kNewMap;
+  for (FrameState s :
+       {FrameState::kLost, FrameState::kAbandoned, FrameState::kLost, FrameState::kNewMap})
+    expected.push_back(s);
+  EXPECT_EQ(states(), expected);
+}
 
 TEST_F(AtlasTrackerTest, ALostCameraStartsANewMapAndFindsTheOldOneAgain) {
   track_view(0);
@@ -304,7 +368,7 @@ TEST_F(AtlasTrackerTest, ALostCameraStartsANewMapAndFindsTheOldOneAgain) {
   ASSERT_GE(first_map_keyframes, 1u);
   track_covered();
   EXPECT_EQ(tracker_.state(), TrackingState::kLost);
-  EXPECT_FALSE(tracker_.wants_reset()) << "the atlas resets nothing";
+  EXPECT_FALSE(tracker_.wants_reset()) << "reset_keyframes 0: no map is discarded";
   // Still covered: nothing to start a map on.
   EXPECT_EQ(track_covered().method, TrackingMethod::kRelocalization);
   EXPECT_EQ(tracker_.state(), TrackingState::kLost);
@@ -328,6 +392,47 @@ TEST_F(AtlasTrackerTest, ALostCameraStartsANewMapAndFindsTheOldOneAgain) {
             (std::vector<FrameState>{FrameState::kNewMap, FrameState::kOk, FrameState::kLost,
                                      FrameState::kLost, FrameState::kNewMap, FrameState::kLost,
                                      FrameState::kRelocalized, FrameState::kOk}));
+}
+
+// A young map rejoins the older one as soon as a frame tracked in it also
+// relocalises there. The frame: its left half from the mirrored place the
+// young map started on, its right half from the first map's place (the view
+// at yaw 0, while the first map started at yaw 5, so the maps' frames differ
+// by a 5 degree turn).
+TEST_F(AtlasTrackerTest, AYoungMapRejoinsTheOlderOneWhenAFrameRelocalisesThere) {
+  map_start_yaw_ = 5;
+  track_view(5);
+  track_view(6);
+  track_covered();
+  track_covered();
+  ASSERT_EQ(track_mirrored().method, TrackingMethod::kInitialization);
+  ASSERT_EQ(map_.active_map(), 1);
+  KeyFrame* young_origin = map_.first_keyframe_in(1);
+  const Pose young_origin_before = young_origin->T_cw;
+  cv::Mat mirrored_bgr, mirrored_depth;
+  cv::flip(real_.bgr, mirrored_bgr, 1);
+  cv::flip(real_.depth, mirrored_depth, 1);
+  const test::RealFrame view0 = test::turned_view(real_, camera_, test::turn(0));
+  const int half = real_.bgr.cols / 2;
+  cv::Mat bgr = mirrored_bgr.clone(), depth = mirrored_depth.clone();
+  view0.bgr.colRange(half, bgr.cols).copyTo(bgr.colRange(half, bgr.cols));
+  view0.depth.colRange(half, depth.cols).copyTo(depth.colRange(half, depth.cols));
+  TrackingStats stats;
+  tracker_.track(make_frame(bgr, depth), &stats);
+  mapper_.run_pending();
+  EXPECT_EQ(tracker_.state(), TrackingState::kOk);
+  EXPECT_EQ(tracker_.rejoined(), 1);
+  EXPECT_EQ(map_.active_map(), 0);
+  EXPECT_EQ(map_.map_ids(), (std::vector<int>{0}));
+  EXPECT_EQ(young_origin->map_id, 0);
+  EXPECT_FALSE(young_origin->map_origin);
+  // The frame is where the view at yaw 0 is in the first map (tracked on
+  // that map's points now), and the young map moved by the maps' turn.
+  expect_pose(0);
+  const Pose turn_between =
+      test::turned_pose(test::turn(0)) * test::turned_pose(test::turn(5)).inverse();
+  EXPECT_LT(test::rotation_error_deg(young_origin->T_cw, young_origin_before * turn_between), 0.2);
+  EXPECT_EQ(states().back(), FrameState::kOk);
 }
 
 }  // namespace

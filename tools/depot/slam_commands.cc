@@ -214,8 +214,11 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
     std::printf("%s keyframe %ld (t %.2f) with %ld, %d matches: map %d (%d keyframes) into map %d",
                 &l == &merges.front() ? " (" : "; ", l.keyframe, l.timestamp, l.matched, l.matches,
                 l.moved_map, l.moved_keyframes, l.into_map);
-  std::printf("%s, %d not confirmed by the keyframe's neighbours\n", merges.empty() ? "" : ")",
-              s.merges_unconfirmed);
+  std::printf(
+      "%s, %d not confirmed by the keyframe's neighbours; %d young map%s rejoined an older one "
+      "(a frame relocalised there)\n",
+      merges.empty() ? "" : ")", s.merges_unconfirmed, s.maps_rejoined,
+      s.maps_rejoined == 1 ? "" : "s");
   if (!a.options.dense_map.empty())
     std::printf("dense map: %zu points from %d keyframes (masks: %s%s%s), wrote %s\n",
                 s.dense_points, s.dense_keyframes, a.options.dense_mask.c_str(),

@@ -459,6 +459,7 @@ RunSummary run_sequence(const RunOptions& o) {
   summary.global_adjustments = system.global_adjustments();
   summary.maps = system.maps();
   summary.merges_unconfirmed = system.merges_unconfirmed();
+  summary.maps_rejoined = system.maps_rejoined();
   if (stats) stats->commit();
   if (keypoint_rows) keypoint_rows->commit();
   if (overlays) {

@@ -111,6 +111,7 @@ struct RunSummary {
   int global_adjustments = 0;  // global bundle adjustments applied after loops
   int maps = 0;                // maps left in the atlas (slam/data/map.h)
   int merges_unconfirmed = 0;  // merges the keyframe's neighbours did not confirm
+  int maps_rejoined = 0;       // young maps merged by a relocalised frame
   // With rate_hz: frames whose turn (the arrival of frame i, or of frame i+1
   // with run-ahead) had passed when the loop got to them: the tracker lagged.
   size_t late_frames = 0;
