@@ -1,13 +1,16 @@
 // `depot slam run` and `depot eval` on bad input: one clear error line, a
 // non-zero exit, and no trajectory written.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <sstream>
 
 #include <assimp/scene.h>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 #include <assimp/Importer.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -98,7 +101,9 @@ TEST(CliSlam, RunsAndWritesATumTrajectory) {
   // Every frame's state beside the trajectory; its tracked frames are the
   // trajectory's.
   const std::string states = out.substr(0, out.size() - 4) + ".states.txt";
-  EXPECT_NE(r.output.find("wrote " + out + " and " + states), std::string::npos) << r.output;
+  const std::string atlas = out.substr(0, out.size() - 4) + ".atlas.txt";
+  EXPECT_NE(r.output.find("wrote " + out + ", " + states + " and " + atlas), std::string::npos)
+      << r.output;
   std::ifstream in(states);
   std::string line;
   std::getline(in, line);
@@ -107,18 +112,28 @@ TEST(CliSlam, RunsAndWritesATumTrajectory) {
   while (std::getline(in, line)) {
     if (line.empty() || line[0] == '#') continue;
     ++frames;
-    const std::string state = line.substr(line.find(' ') + 1);
+    std::istringstream fields(line);
+    std::string stamp, state, map;
+    fields >> stamp >> state >> map;
     tracked += state == "NEW_MAP" || state == "OK" || state == "RELOCALIZED";
+    EXPECT_EQ(map, "0") << "one map: every frame in the trajectory's";
     if (frames == 1) {
       EXPECT_EQ(state, "NEW_MAP");
     }
   }
   EXPECT_EQ(frames, 30);
   EXPECT_EQ(tracked, static_cast<int>(read_tum_trajectory(out).size()));
+  EXPECT_EQ(read_tum_trajectory(atlas).size(), read_tum_trajectory(out).size());
   DepotResult ate = depot("eval ate " + d + "/groundtruth.txt " + out);
   EXPECT_EQ(ate.code, 0) << ate.output;
   EXPECT_NE(ate.output.find("rmse"), std::string::npos);
   EXPECT_NE(ate.output.find("tracked share  100.0 % (30 of 30 frames given; states " + states),
+            std::string::npos)
+      << ate.output;
+  EXPECT_NE(ate.output.find("all maps       rmse "), std::string::npos) << ate.output;
+  EXPECT_NE(ate.output.find("over the 30 frames with a pose in any of 1 maps (100.0 % of those "
+                            "given), each map aligned on its own; the trajectory's map holds "
+                            "100.0 %"),
             std::string::npos)
       << ate.output;
 }
@@ -141,7 +156,62 @@ TEST(CliSlam, AteReportsTheTrackedShareOfAStatesFile) {
   EXPECT_NE(report.find("\"tracked_share\": 0.8"), std::string::npos) << report;
   expect_one_error_line(
       depot("eval ate " + d + "/groundtruth.txt " + out + " --states " + d + "/groundtruth.txt"),
-      "expected 2 fields (timestamp state)");
+      "expected 2 or 3 fields (timestamp state [map])");
+}
+
+// The atlas: frames of a map that never joined the trajectory's are scored
+// too, their map aligned on its own (eval/maps_ate.h). Made-up files: map 0
+// holds frames 0-4, map 1 frames 6-8 in a frame turned and moved.
+TEST(CliSlam, AteScoresTheFramesOfEveryMapOfTheAtlas) {
+  const std::string dir = temp_path("atlas_eval");
+  fs::create_directories(dir);
+  std::ofstream gt(dir + "/gt.txt"), run(dir + "/run.txt"), states(dir + "/run.states.txt"),
+      atlas(dir + "/run.atlas.txt");
+  const Eigen::Quaterniond turn(Eigen::AngleAxisd(0.8, Eigen::Vector3d(0.2, 1, 0).normalized()));
+  for (int k = 0; k < 10; ++k) {
+    const double t = 1.0 + 0.1 * k;
+    const Eigen::Vector3d p(std::cos(0.5 * k), std::sin(0.5 * k), 0.1 * k);
+    char line[200];
+    std::snprintf(line, sizeof(line), "%.6f %.9f %.9f %.9f 0 0 0 1\n", t, p.x(), p.y(), p.z());
+    gt << line;
+    if (k < 5) {
+      run << line;
+      atlas << line;
+      std::snprintf(line, sizeof(line), "%.6f %s 0\n", t, k ? "OK" : "NEW_MAP");
+      states << line;
+    } else if (k >= 6 && k <= 8) {
+      const Eigen::Vector3d q = turn * p + Eigen::Vector3d(3, -1, 2);
+      const Eigen::Quaterniond r = turn;
+      std::snprintf(line, sizeof(line), "%.6f %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n", t, q.x(),
+                    q.y(), q.z(), r.x(), r.y(), r.z(), r.w());
+      atlas << line;
+      std::snprintf(line, sizeof(line), "%.6f OTHER_MAP 1\n", t);
+      states << line;
+    } else {
+      std::snprintf(line, sizeof(line), "%.6f LOST\n", t);
+      states << line;
+    }
+  }
+  gt.close(), run.close(), states.close(), atlas.close();
+  const std::string json = dir + "/ate.json";
+  DepotResult ate = depot("eval ate " + dir + "/gt.txt " + dir + "/run.txt --json " + json);
+  ASSERT_EQ(ate.code, 0) << ate.output;
+  EXPECT_NE(ate.output.find("tracked share  50.0 % (5 of 10 frames given"), std::string::npos)
+      << ate.output;
+  EXPECT_NE(ate.output.find("all maps       rmse 0.000000 m over the 8 frames with a pose in any "
+                            "of 2 maps (80.0 % of those given), each map aligned on its own; the "
+                            "trajectory's map holds 50.0 %"),
+            std::string::npos)
+      << ate.output;
+  EXPECT_NE(read_text(json).find("\"posed_share\": 0.8"), std::string::npos) << read_text(json);
+  // An atlas trajectory of another run: said, and left out.
+  std::ofstream(dir + "/run.atlas.txt") << "1.0 0 0 0 0 0 0 1\n";
+  ate = depot("eval ate " + dir + "/gt.txt " + dir + "/run.txt");
+  ASSERT_EQ(ate.code, 0) << ate.output;
+  EXPECT_NE(ate.output.find("holds 1 poses but " + dir + "/run.states.txt names 8 frames"),
+            std::string::npos)
+      << ate.output;
+  EXPECT_EQ(ate.output.find("all maps       rmse"), std::string::npos) << ate.output;
 }
 
 TEST(CliSlam, WritesOneRowPerKeypointConsistentWithTheStatistics) {

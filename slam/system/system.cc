@@ -1,5 +1,6 @@
 #include "slam/system/system.h"
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 
@@ -32,20 +33,28 @@ const KeyFrame* resolve(const TrajectoryEntry& e, Pose& T_wc) {
   return ref;
 }
 
-// The atlas map holding most tracked frames (the oldest on a tie), -1 when
-// none is tracked. Caller holds the map lock.
-int main_map(const std::vector<TrajectoryEntry>& entries) {
+// The atlas maps of the tracked frames numbered by the frames each holds,
+// most first (the older on a tie): 0 is the main map. Caller holds the map lock.
+std::map<int, int> map_numbers(const std::vector<TrajectoryEntry>& entries) {
   std::map<int, size_t> frames;
   for (const TrajectoryEntry& e : entries) {
     Pose T_wc;
     if (!is_tracked(e.state)) continue;
     if (const KeyFrame* ref = resolve(e, T_wc)) ++frames[ref->map_id];
   }
-  int best = -1;
-  size_t most = 0;
-  for (const auto& [id, n] : frames)
-    if (n > most) best = id, most = n;
-  return best;
+  std::vector<std::pair<int, size_t>> by_size(frames.begin(), frames.end());
+  std::stable_sort(by_size.begin(), by_size.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  std::map<int, int> numbers;
+  for (size_t i = 0; i < by_size.size(); ++i) numbers[by_size[i].first] = static_cast<int>(i);
+  return numbers;
+}
+
+// The atlas map holding most tracked frames, -1 when none is tracked.
+int main_map(const std::vector<TrajectoryEntry>& entries) {
+  for (const auto& [id, number] : map_numbers(entries))
+    if (number == 0) return id;
+  return -1;
 }
 
 }  // namespace
@@ -223,27 +232,30 @@ std::vector<StampedPose> System::trajectory() const {
 
 std::vector<StampedFrameState> System::frame_states() const {
   std::lock_guard<std::mutex> lock(map_.mutex());
-  const int main = main_map(tracker_.trajectory());
+  const std::map<int, int> numbers = map_numbers(tracker_.trajectory());
   std::vector<StampedFrameState> out;
   for (const TrajectoryEntry& e : tracker_.trajectory()) {
-    FrameState state = e.state;
+    StampedFrameState f{e.timestamp, e.state, -1};
     Pose T_wc;
-    if (is_tracked(state)) {
+    if (is_tracked(f.state)) {
       const KeyFrame* ref = resolve(e, T_wc);
-      if (!ref || ref->map_id != main) state = FrameState::kOtherMap;
+      f.map = ref ? numbers.at(ref->map_id) : -1;
+      if (f.map != 0) f.state = FrameState::kOtherMap;
     }
-    out.push_back({e.timestamp, state});
+    out.push_back(f);
   }
   return out;
 }
 
 std::vector<AtlasPose> System::atlas_trajectory() const {
   std::lock_guard<std::mutex> lock(map_.mutex());
+  const std::map<int, int> numbers = map_numbers(tracker_.trajectory());
   std::vector<AtlasPose> out;
   for (const TrajectoryEntry& e : tracker_.trajectory()) {
     Pose T_wc;
     if (!is_tracked(e.state)) continue;
-    if (const KeyFrame* ref = resolve(e, T_wc)) out.push_back({{e.timestamp, T_wc}, ref->map_id});
+    if (const KeyFrame* ref = resolve(e, T_wc))
+      out.push_back({{e.timestamp, T_wc}, numbers.at(ref->map_id)});
   }
   return out;
 }

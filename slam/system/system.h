@@ -35,10 +35,11 @@ struct FrameTiming {
   double total_ms = 0;
 };
 
-// A tracked frame's pose in the coordinate frame of its atlas map.
+// A tracked frame's pose in the coordinate frame of its atlas map, the map
+// numbered as frame_states() numbers it (0 = the main map).
 struct AtlasPose {
   StampedPose pose;
-  int map_id = 0;
+  int map = 0;
 };
 
 struct TrackResult {
@@ -91,7 +92,8 @@ class System {
   std::vector<StampedPose> trajectory() const;
   // The state of every frame given so far, in order: one entry per track()
   // call. Its tracked entries are the trajectory's frames; frames tracked
-  // in another map of the atlas are OTHER_MAP.
+  // in another map of the atlas are OTHER_MAP. Frames with a pose carry
+  // their map's number (0 = main, 1.. the others by frames held).
   std::vector<StampedFrameState> frame_states() const;
   // Every frame tracked in any map of the atlas, each in its map's frame.
   std::vector<AtlasPose> atlas_trajectory() const;

@@ -118,12 +118,17 @@ TEST(SystemStates, FramesOfAnotherMapOfTheAtlasAreNamedAndLeftOut) {
     EXPECT_LT(test::rotation_error_deg(trajectory[k].pose, truth), 0.1) << "yaw " << yaws[k];
     EXPECT_LT(trajectory[k].pose.translation().norm(), 0.01) << "yaw " << yaws[k];
   }
-  // Every tracked frame, each in its own map.
+  // Every frame with a pose, each in its own map: the main map is 0.
   const std::vector<AtlasPose> atlas = system.atlas_trajectory();
   ASSERT_EQ(atlas.size(), 7u);
-  EXPECT_EQ(atlas[2].map_id, atlas[3].map_id);
-  EXPECT_NE(atlas[2].map_id, atlas[0].map_id);
-  EXPECT_EQ(atlas[4].map_id, atlas[0].map_id);
+  std::vector<int> maps;
+  for (const AtlasPose& p : atlas) maps.push_back(p.map);
+  EXPECT_EQ(maps, (std::vector<int>{0, 0, 1, 1, 0, 0, 0}));
+  for (const StampedFrameState& s : states)
+    EXPECT_EQ(s.map, s.state == FrameState::kOtherMap ? 1 : is_tracked(s.state) ? 0 : -1);
+  // The mirrored place's frames are where that map put them: its first
+  // frame is its origin.
+  EXPECT_LT(atlas[2].pose.pose.translation().norm(), 1e-9);
 }
 
 }  // namespace

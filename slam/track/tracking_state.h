@@ -6,7 +6,7 @@
 //
 // FrameState is the final record of one frame given to the system, what the
 // states file beside a trajectory holds (`<trajectory>.states.txt`, one
-// "timestamp STATE" line per frame). A frame is *tracked* (has a pose in the
+// "timestamp STATE [MAP]" line per frame). A frame is *tracked* (has a pose in the
 // trajectory) when its state is NEW_MAP, OK or RELOCALIZED; every other frame
 // has no pose and is left out of the trajectory (ORB-SLAM2 does the same):
 //   NOT_INITIALIZED  no map yet: too few keypoints with depth to start one
@@ -80,9 +80,18 @@ inline bool is_tracked(FrameState s) {
   return s == FrameState::kNewMap || s == FrameState::kOk || s == FrameState::kRelocalized;
 }
 
+// True for the states whose frames have a pose in some map of the atlas.
+inline bool has_pose(FrameState s) {
+  return is_tracked(s) || s == FrameState::kOtherMap;
+}
+
 struct StampedFrameState {
   double timestamp = 0;
   FrameState state = FrameState::kNotInitialized;
+  // For a frame with a pose (has_pose): its map, numbered by the frames it
+  // holds: 0 is the main map (the trajectory's), 1.. the others. -1 for a
+  // frame without a pose, or when not known (a states file of two columns).
+  int map = -1;
 };
 
 }  // namespace depot::slam

@@ -11,8 +11,10 @@
 #include <CLI/CLI.hpp>
 
 #include "common/staged_file.h"
+#include "common/tum_io.h"
 #include "eval/ate.h"
 #include "eval/improvement.h"
+#include "eval/maps_ate.h"
 #include "eval/matched_trajectories.h"
 #include "eval/report_json.h"
 #include "eval/result_plots.h"
@@ -116,6 +118,28 @@ std::string states_file(const AteArgs& args) {
   return fs::is_regular_file(beside, ec) ? beside : "";
 }
 
+// ATE over every map of the atlas (eval/maps_ate.h), when the states name
+// each frame's map and the atlas trajectory is beside the estimate.
+std::optional<eval::MapsAte> maps_ate(const AteArgs& args, const std::string& states_path,
+                                      eval::AlignmentKind alignment) {
+  const std::vector<slam::StampedFrameState> states = slam::read_frame_states(states_path);
+  const std::vector<int> maps = slam::maps_of_posed_frames(states);
+  const std::string atlas_path = slam::atlas_trajectory_path(args.common.estimate_path);
+  std::error_code ec;
+  if (maps.empty() || !fs::is_regular_file(atlas_path, ec)) return std::nullopt;
+  const std::vector<StampedPose> atlas = read_tum_trajectory(atlas_path);
+  if (atlas.size() != maps.size()) {
+    std::fprintf(stderr,
+                 "depot: warning: %s: holds %zu poses but %s names %zu frames with a pose (is it "
+                 "the atlas trajectory of this run?); no ATE over all maps\n",
+                 atlas_path.c_str(), atlas.size(), states_path.c_str(), maps.size());
+    return std::nullopt;
+  }
+  return eval::compute_maps_ate(read_tum_trajectory(args.common.reference_path), atlas, maps,
+                                states.size(), args.common.association, alignment,
+                                args.common.reference_path, atlas_path);
+}
+
 void run_ate(const AteArgs& args) {
   check_outputs(args.common);
   const eval::MatchedTrajectories matched = eval::load_matched_trajectories(
@@ -135,6 +159,8 @@ void run_ate(const AteArgs& args) {
   eval::AteOptions options;
   options.alignment = args.sim3 ? eval::AlignmentKind::kSimilarity : eval::AlignmentKind::kRigid;
   const eval::AteResult ate = eval::compute_ate(matched, options);
+  const std::optional<eval::MapsAte> all_maps =
+      states_path.empty() ? std::nullopt : maps_ate(args, states_path, options.alignment);
 
   nlohmann::json report = eval::ate_report_json(matched, ate);
   double improvement = 0.0;
@@ -150,6 +176,21 @@ void run_ate(const AteArgs& args) {
     report["frames_tracked"] = tracked->tracked;
     report["tracked_share"] = tracked->share();
   }
+  if (all_maps) {
+    const eval::ErrorStatistics& m = all_maps->statistics;
+    report["all_maps"] = {
+        {"atlas_trajectory", slam::atlas_trajectory_path(args.common.estimate_path)},
+        {"rmse", m.rmse},
+        {"mean", m.mean},
+        {"median", m.median},
+        {"max", m.max},
+        {"posed", all_maps->posed},
+        {"posed_share", all_maps->posed_share()},
+        {"main_map_share", all_maps->main_map_share()},
+        {"maps", all_maps->maps},
+        {"maps_left_out", all_maps->maps_left_out},
+        {"poses_left_out", all_maps->poses_left_out}};
+  }
   if (!args.common.json_path.empty()) eval::write_json_file(args.common.json_path, report);
   if (!args.common.plot_path.empty()) {
     eval::write_trajectory_plot_svg(args.common.plot_path, eval::ate_plot(matched, ate));
@@ -160,6 +201,17 @@ void run_ate(const AteArgs& args) {
   if (tracked)
     std::printf("  tracked share  %.1f %% (%zu of %zu frames given; states %s)\n",
                 100.0 * tracked->share(), tracked->tracked, tracked->frames, states_path.c_str());
+  if (all_maps) {
+    std::printf(
+        "  all maps       rmse %.6f m over the %zu frames with a pose in any of %zu maps (%.1f %% "
+        "of "
+        "those given), each map aligned on its own; the trajectory's map holds %.1f %%\n",
+        all_maps->statistics.rmse, all_maps->posed, all_maps->maps, 100.0 * all_maps->posed_share(),
+        100.0 * all_maps->main_map_share());
+    if (all_maps->maps_left_out)
+      std::printf("                 %zu maps (%zu poses) too small to align are not in the rmse\n",
+                  all_maps->maps_left_out, all_maps->poses_left_out);
+  }
   std::printf("  alignment      %s, scale %.6g\n", eval::to_string(ate.alignment_kind).c_str(),
               ate.alignment.scale);
   std::printf("  translational error (m)\n");
@@ -223,7 +275,8 @@ void register_eval_commands(CLI::App& app) {
   ate->add_flag("--sim3", ate_args->sim3, "align with scale (Sim(3)) instead of SE(3)");
   ate->add_option("--states", ate_args->states_path,
                   "frame states of the estimate (`depot slam run` writes them beside the "
-                  "trajectory): also print the tracked share")
+                  "trajectory): also print the tracked share, and with the atlas trajectory "
+                  "beside EST (run.atlas.txt) the ATE over the frames of every map")
       ->default_str("EST's states file (run.txt -> run.states.txt) when it exists");
   ate_args->baseline_option =
       ate->add_option("--baseline-rmse", ate_args->baseline_rmse,

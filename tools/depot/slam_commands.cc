@@ -150,6 +150,7 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
   // Every output must be writable before a long run starts, not after it,
   // and no two of them (or an input) may be one file.
   const std::string states_path = slam::frame_states_path(a.output);
+  const std::string atlas_path = slam::atlas_trajectory_path(a.output);
   OutputPaths outputs;
   outputs.add_input_folder("the dataset", a.options.dataset);
   outputs.add_input("--load-map", a.options.load_map);
@@ -157,6 +158,7 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
   outputs.add_input("--vocabulary", a.options.vocabulary);
   outputs.add_file("-o", a.output);
   outputs.add_file("the states file of -o", states_path);
+  outputs.add_file("the atlas trajectory of -o", atlas_path);
   outputs.add_file("--keyframes", a.keyframes);
   outputs.add_file("--stats", a.options.stats_csv);
   outputs.add_file("--keypoints", a.options.keypoints_csv);
@@ -165,8 +167,8 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
   outputs.add_folder("--overlays", a.options.overlays);
   outputs.check();
   for (const std::string* path : std::initializer_list<const std::string*>{
-           &a.output, &states_path, &a.keyframes, &a.options.stats_csv, &a.options.keypoints_csv,
-           &a.options.dense_map, &a.options.save_map})
+           &a.output, &states_path, &atlas_path, &a.keyframes, &a.options.stats_csv,
+           &a.options.keypoints_csv, &a.options.dense_map, &a.options.save_map})
     if (!path->empty()) check_output_file(*path);
   if (!a.options.overlays.empty())
     check_replaceable(a.options.overlays, runner::overlay_folder_kind(), false);
@@ -175,14 +177,20 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
     std::fprintf(stderr, "depot slam run: %s, mode %s\n", a.options.dataset.c_str(),
                  a.options.mode.c_str());
   runner::RunSummary s = runner::run_sequence(a.options);
-  // The trajectory and its states appear together: both staged, then committed.
+  // The trajectory, its states and the atlas trajectory appear together:
+  // all staged, then committed.
   const std::string header = "depot-slam (" + a.options.mode + ") of " + a.options.dataset;
-  StagedFile trajectory(a.output), states(states_path);
+  StagedFile trajectory(a.output), states(states_path), atlas(atlas_path);
   trajectory.stream() << format_tum_trajectory(s.trajectory, header + ": tracked frames only");
   states.stream() << slam::format_frame_states(s.frame_states,
                                                header + ": the state of every frame given");
+  atlas.stream() << format_tum_trajectory(
+      s.atlas_trajectory,
+      header + ": every frame with a pose, each in its own atlas map's frame (map numbers in " +
+          fs::path(states_path).filename().string() + ")");
   trajectory.commit();
   states.commit();
+  atlas.commit();
   if (!a.keyframes.empty())
     write_tum_trajectory(a.keyframes, s.keyframes_trajectory, "depot-slam keyframes");
   std::printf(
@@ -196,7 +204,8 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
         "taking %.1f",
         s.filter_ms, s.flow_ms, s.wait_ms, s.wait_p95_ms,
         s.detector_name.empty() ? "(no)" : s.detector_name.c_str(), s.detect_ms);
-  std::printf("); wrote %s and %s\n", a.output.c_str(), states_path.c_str());
+  std::printf("); wrote %s, %s and %s\n", a.output.c_str(), states_path.c_str(),
+              atlas_path.c_str());
   std::vector<slam::LoopClosure> loops, merges;
   for (const slam::LoopClosure& l : s.loops) (l.merge ? merges : loops).push_back(l);
   std::printf("loops closed: %zu", loops.size());

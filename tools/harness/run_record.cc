@@ -51,13 +51,17 @@ nlohmann::json to_json(const RunRecord& r) {
           {"tracked", r.tracked},
           {"tracked_share", number(r.frames ? static_cast<double>(r.tracked) / r.frames : NAN)},
           {"lost", r.lost},
+          {"posed", r.posed},
+          {"posed_share", number(r.frames ? static_cast<double>(r.posed) / r.frames : NAN)},
+          {"maps", r.maps},
           {"keyframes", r.keyframes},
           {"ate",
            {{"rmse", number(r.ate_rmse)},
             {"mean", number(r.ate_mean)},
             {"median", number(r.ate_median)},
             {"std", number(r.ate_std)},
-            {"max", number(r.ate_max)}}},
+            {"max", number(r.ate_max)},
+            {"all_maps_rmse", number(r.ate_all_maps_rmse)}}},
           {"rpe",
            {{"delta_s", r.rpe_delta_s},
             {"translation_rmse", number(r.rpe_trans_rmse)},
@@ -118,6 +122,10 @@ RunRecord read_run_record(const std::string& path) {
     r.ate_median = number(ate, "median");
     r.ate_std = number(ate, "std");
     r.ate_max = number(ate, "max");
+    // Records from before the atlas lack these: the trajectory was all.
+    r.posed = j.value("posed", r.tracked);
+    r.maps = j.value("maps", r.tracked > 0 ? 1 : 0);
+    r.ate_all_maps_rmse = ate.contains("all_maps_rmse") ? number(ate, "all_maps_rmse") : r.ate_rmse;
     const auto& rpe = j.at("rpe");
     r.rpe_delta_s = rpe.at("delta_s").get<double>();
     r.rpe_trans_rmse = number(rpe, "translation_rmse");

@@ -33,6 +33,11 @@ struct RunRecord {
   int tracked = 0;  // frames with a pose in the final trajectory (states.txt: NEW_MAP, OK,
                     // RELOCALIZED); the JSON also holds tracked_share = tracked / frames
   int lost = 0;     // frames tracking reported lost (no pose)
+  // The atlas (eval/maps_ate.h): frames with a pose in any map, the maps
+  // holding them, and ATE over all of them with each map aligned on its own.
+  int posed = 0;
+  int maps = 0;
+  double ate_all_maps_rmse = NAN;  // m
   int keyframes = 0;
   double ate_rmse = NAN, ate_mean = NAN, ate_median = NAN, ate_std = NAN, ate_max = NAN;  // m
   double rpe_delta_s = 1.0;

@@ -11,6 +11,7 @@
 #include "common/tum_io.h"
 #include "eval/ate.h"
 #include "eval/keypoint_score.h"
+#include "eval/maps_ate.h"
 #include "eval/matched_trajectories.h"
 #include "eval/motion_truth.h"
 #include "eval/result_plots.h"
@@ -69,8 +70,10 @@ void run_system_into(const std::string& dataset, const SweepJob& job, const std:
                          "depot sweep run " + job.id + ": system " + spec.name);
     write_text_file_atomic((out / "states.txt").string(),
                            slam::format_frame_states(states, "depot sweep run " + job.id));
-    add_accuracy(read_tum_trajectory((fs::path(dataset) / "groundtruth.txt").string()),
-                 s.trajectory, (out / "ate.svg").string(), r);
+    const std::vector<StampedPose> truth =
+        read_tum_trajectory((fs::path(dataset) / "groundtruth.txt").string());
+    add_accuracy(truth, s.trajectory, (out / "ate.svg").string(), r);
+    add_atlas_accuracy(truth, s.trajectory, states, r);
   } catch (const Error& e) {
     throw_if_interrupted(job.id);
     r.ok = false;
@@ -80,6 +83,25 @@ void run_system_into(const std::string& dataset, const SweepJob& job, const std:
 }
 
 }  // namespace
+
+void add_atlas_accuracy(const std::vector<StampedPose>& truth,
+                        const std::vector<StampedPose>& atlas,
+                        const std::vector<slam::StampedFrameState>& states, RunRecord& r) {
+  const std::vector<int> maps = slam::maps_of_posed_frames(states);
+  if (maps.empty()) {
+    // States without maps (another system): its trajectory is all it has.
+    r.posed = r.tracked;
+    r.maps = r.tracked > 0 ? 1 : 0;
+    r.ate_all_maps_rmse = r.ate_rmse;
+    return;
+  }
+  r.posed = static_cast<int>(maps.size());
+  r.maps = static_cast<int>(*std::max_element(maps.begin(), maps.end()) + 1);
+  if (!r.ok) return;  // the main map is too short to align: so is the score
+  r.ate_all_maps_rmse = eval::compute_maps_ate(truth, atlas, maps, states.size(), {},
+                                               eval::AlignmentKind::kRigid, "groundtruth", r.mode)
+                            .statistics.rmse;
+}
 
 void add_rejection(const eval::RejectionScore& score, RunRecord& r) {
   r.precision = score.precision();
@@ -200,10 +222,11 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
   r.moving_share = read_dataset_record(layout.dataset_record(job.dataset_id)).moving_share_mean;
 
   fs::create_directories(fs::path(layout.run_dir(job.id)).parent_path());
-  static const OutputKind kRunFolder{"sweep run",
-                                     "result.json",
-                                     {"result.json", "trajectory.txt", "states.txt", "stats.csv",
-                                      "ate.svg", "system.log", "keypoints.csv", "system"}};
+  static const OutputKind kRunFolder{
+      "sweep run",
+      "result.json",
+      {"result.json", "trajectory.txt", "states.txt", "atlas.txt", "stats.csv", "ate.svg",
+       "system.log", "keypoints.csv", "system"}};
   StagedDirectory out(layout.run_dir(job.id), kRunFolder, /*overwrite=*/true);
   if (system::is_system_mode(job.mode)) {
     run_system_into(dataset, job, out.path(), out.final_path(), r);
@@ -237,8 +260,13 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
                          "depot sweep run " + job.id + ": tracked frames only");
     write_text_file_atomic((fs::path(out.path()) / "states.txt").string(),
                            slam::format_frame_states(s.frame_states, "depot sweep run " + job.id));
-    add_accuracy(read_tum_trajectory((fs::path(dataset) / "groundtruth.txt").string()),
-                 s.trajectory, (fs::path(out.path()) / "ate.svg").string(), r);
+    write_tum_trajectory((fs::path(out.path()) / "atlas.txt").string(), s.atlas_trajectory,
+                         "depot sweep run " + job.id +
+                             ": every frame with a pose, each in its own atlas map's frame");
+    const std::vector<StampedPose> truth =
+        read_tum_trajectory((fs::path(dataset) / "groundtruth.txt").string());
+    add_accuracy(truth, s.trajectory, (fs::path(out.path()) / "ate.svg").string(), r);
+    add_atlas_accuracy(truth, s.atlas_trajectory, s.frame_states, r);
   } catch (const Error& e) {
     throw_if_interrupted(job.id);
     // A run that tracks no frame is an outcome of the sweep, not a crash.

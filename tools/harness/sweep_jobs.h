@@ -4,7 +4,8 @@
 //   render: the cell's scenario with its overrides and the job's seed to
 //           data/<id>/, then data/<id>.json with the measured moving share;
 //   slam:   one mode on that dataset to runs/<id>/ (trajectory.txt,
-//           stats.csv, ate.svg, result.json), staged so it appears whole;
+//           states.txt, atlas.txt, stats.csv, ate.svg, result.json),
+//           staged so it appears whole;
 //           a system under test ("system:NAME", tools/system/) writes
 //           system.log (its output) instead of stats.csv.
 #include <string>
@@ -12,6 +13,7 @@
 
 #include "common/tum_io.h"
 #include "eval/motion_truth.h"
+#include "slam/track/tracking_state.h"
 #include "tools/harness/run_record.h"
 #include "tools/harness/sweep_plan.h"
 
@@ -29,6 +31,14 @@ DatasetRecord run_render_job(const SweepPlan& plan, const SweepLayout& layout, c
 // camera, which is an outcome of the sweep, not a failed job.
 void add_accuracy(const std::vector<StampedPose>& truth, const std::vector<StampedPose>& trajectory,
                   const std::string& plot_path, RunRecord& r);
+
+// The atlas's figures into `r` (after add_accuracy): frames with a pose in
+// any map, the maps, and ATE over all of them with each map aligned on its
+// own (eval/maps_ate.h). States that name no maps (another system's) give
+// the trajectory's figures.
+void add_atlas_accuracy(const std::vector<StampedPose>& truth,
+                        const std::vector<StampedPose>& atlas,
+                        const std::vector<slam::StampedFrameState>& states, RunRecord& r);
 
 // A run's rejection figures from its score.
 void add_rejection(const eval::RejectionScore& score, RunRecord& r);

@@ -57,5 +57,53 @@ TEST(SweepJobs, AccuracyOfARunAndOfOneThatLostTheCamera) {
   fs::remove_all(plot);
 }
 
+// The atlas's figures: half the frames in the trajectory's map, a quarter
+// in a map of its own frame, the rest lost; each map aligns to zero.
+TEST(SweepJobs, AtlasAccuracyCountsTheFramesOfEveryMap) {
+  const std::vector<StampedPose> truth = circle();
+  Pose other = Pose::Identity();
+  other.translate(Eigen::Vector3d(1, 2, 3));
+  other.rotate(Eigen::AngleAxisd(1.1, Eigen::Vector3d::UnitX()));
+  std::vector<StampedPose> atlas;
+  std::vector<slam::StampedFrameState> states;
+  const size_t n = truth.size();
+  for (size_t i = 0; i < n; ++i) {
+    if (i < n / 2) {
+      atlas.push_back(truth[i]);
+      states.push_back({truth[i].timestamp, slam::FrameState::kOk, 0});
+    } else if (i < 3 * n / 4) {
+      atlas.push_back({truth[i].timestamp, other * truth[i].pose});
+      states.push_back({truth[i].timestamp, slam::FrameState::kOtherMap, 1});
+    } else {
+      states.push_back({truth[i].timestamp, slam::FrameState::kLost, -1});
+    }
+  }
+  RunRecord r;
+  r.mode = "full";
+  r.tracked = static_cast<int>(n / 2);
+  add_atlas_accuracy(truth, atlas, states, r);
+  EXPECT_EQ(r.posed, static_cast<int>(atlas.size()));
+  EXPECT_EQ(r.maps, 2);
+  EXPECT_LT(r.ate_all_maps_rmse, 1e-9);
+  // Read back from the record.
+  const fs::path file = fs::temp_directory_path() / ("atlas_record_" + std::to_string(getpid()));
+  write_record(file.string(), to_json(r));
+  const RunRecord back = read_run_record(file.string());
+  EXPECT_EQ(back.posed, r.posed);
+  EXPECT_EQ(back.maps, 2);
+  EXPECT_LT(back.ate_all_maps_rmse, 1e-9);
+  fs::remove(file);
+  // Another system's states name no maps: its trajectory is all it has.
+  RunRecord system;
+  system.tracked = 7;
+  system.ate_rmse = 0.02;
+  std::vector<slam::StampedFrameState> plain = states;
+  for (auto& f : plain) f.map = -1;
+  add_atlas_accuracy(truth, atlas, plain, system);
+  EXPECT_EQ(system.posed, 7);
+  EXPECT_EQ(system.maps, 1);
+  EXPECT_DOUBLE_EQ(system.ate_all_maps_rmse, 0.02);
+}
+
 }  // namespace
 }  // namespace depot::harness

@@ -109,6 +109,7 @@ ReportFiles write_sweep_report(const SweepPlan& plan, const SweepLayout& layout,
                 {"table3_ate_vs_orb.csv", ate_against_orb_table(plan, summary)},
                 {"table4_rpe_vs_orb.csv", rpe_against_orb_table(plan, summary)},
                 {"rejection.csv", rejection_table(plan, summary)},
+                {"frames.csv", frames_table(plan, summary)},
                 {"runs.csv", runs_table(plan, summary)}};
   std::string markdown = "# Sweep report: " + layout.root + "\n\n";
   std::string tables_html;

@@ -96,6 +96,7 @@ SweepSummary summarize_records(const SweepPlan& plan, const std::vector<RunRecor
       e.cell = c;
       e.mode = mode;
       std::vector<double> ate, ate_sd, rt, rt_sd, rr, rr_sd, p, pb, r, tracked, moving;
+      std::vector<double> posed, maps, ate_all;
       for (const RunRecord* run : groups[{c, mode}]) {
         e.runs_by_seed[run->seed] = *run;
         ++e.runs;
@@ -112,6 +113,9 @@ SweepSummary summarize_records(const SweepPlan& plan, const std::vector<RunRecor
         r.push_back(run->recall);
         tracked.push_back(run->frames ? static_cast<double>(run->tracked) / run->frames : NAN);
         moving.push_back(run->moving_share);
+        posed.push_back(run->frames ? static_cast<double>(run->posed) / run->frames : NAN);
+        maps.push_back(run->maps);
+        ate_all.push_back(run->ate_all_maps_rmse);
       }
       e.ate_rmse = mean_std(ate);
       e.ate_std = mean_std(ate_sd);
@@ -124,6 +128,9 @@ SweepSummary summarize_records(const SweepPlan& plan, const std::vector<RunRecor
       e.recall = mean_std(r);
       e.tracked_share = mean_std(tracked);
       e.moving_share = mean_std(moving);
+      e.posed_share = mean_std(posed);
+      e.maps = mean_std(maps);
+      e.ate_all_maps_rmse = mean_std(ate_all);
       summary.entries.push_back(e);
     }
   return summary;

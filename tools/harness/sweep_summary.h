@@ -33,6 +33,9 @@ struct CellModeSummary {
   MeanStd precision, recall;              // boundary points counted as static
   MeanStd precision_without_boundary;     // boundary points left out
   MeanStd tracked_share;                  // frames in trajectory / frames
+  MeanStd posed_share;                    // frames with a pose in any atlas map / frames
+  MeanStd maps;                           // atlas maps holding frames
+  MeanStd ate_all_maps_rmse;              // m, every map aligned on its own (eval/maps_ate.h)
   MeanStd moving_share;                   // pixels on moving objects
   std::map<int, RunRecord> runs_by_seed;
 };

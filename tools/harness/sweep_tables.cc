@@ -236,15 +236,46 @@ Table rejection_table(const SweepPlan& plan, const SweepSummary& s) {
   return t;
 }
 
+Table frames_table(const SweepPlan& plan, const SweepSummary& s) {
+  Table t;
+  t.title = "Every frame counted";
+  t.caption =
+      "ATE over the trajectory (m) only sees the frames it holds; beside it the share of "
+      "frames given that are in it (tracked), the share with a pose in any map of the atlas "
+      "(posed: the trajectory's map and maps never merged into it), the maps holding frames, "
+      "and ATE over all posed frames with each map aligned to the ground truth on its own "
+      "(m). Means ± std over seeds.";
+  add_cell_columns(plan, t);
+  t.columns.push_back({"mode"});
+  t.columns.push_back({"ATE RMSE", 4, true});
+  t.columns.push_back({"tracked", 1, false, " %"});
+  t.columns.push_back({"posed", 1, false, " %"});
+  t.columns.push_back({"maps", 1, true});
+  t.columns.push_back({"ATE all maps", 4, true});
+  for (size_t c = 0; c < plan.cells.size(); ++c)
+    for (const auto& mode : plan.spec.modes) {
+      const CellModeSummary& e = *s.find(c, mode);
+      auto row = cell_values(plan, c);
+      row.push_back(text(mode));
+      row.push_back(number(e.ate_rmse));
+      row.push_back(number(100 * e.tracked_share.mean));
+      row.push_back(number(100 * e.posed_share.mean));
+      row.push_back(number(e.maps));
+      row.push_back(number(e.ate_all_maps_rmse));
+      t.rows.push_back(row);
+    }
+  return t;
+}
+
 Table runs_table(const SweepPlan& plan, const SweepSummary& s) {
   Table t;
   t.title = "All runs";
   t.caption =
       "One row per finished run; its folder runs/<id>/ holds trajectory.txt (the tracked "
-      "frames), states.txt (every frame's state), stats.csv, ate.svg and result.json. tracked "
-      "= frames with a pose / frames given. precision leaves boundary points out; precision (b. "
-      "static) "
-      "counts them as static.";
+      "frames), states.txt (every frame's state and map), atlas.txt (every frame with a pose, "
+      "in its map's frame), stats.csv, ate.svg and result.json. tracked = frames in the "
+      "trajectory / frames given; posed = frames with a pose in any map / frames given. "
+      "precision leaves boundary points out; precision (b. static) counts them as static.";
   t.columns = {{"run"},
                {"seed"},
                {"mode"},
@@ -254,14 +285,17 @@ Table runs_table(const SweepPlan& plan, const SweepSummary& s) {
                {"precision (b. static)", 3},
                {"recall", 3},
                {"tracked", 1, false, " %"},
+               {"posed", 1, false, " %"},
+               {"ATE all maps", 4},
                {"seconds", 1},
                {"note"}};
   for (const auto& r : s.runs)
     t.rows.push_back({text(r.id), text(std::to_string(r.seed)), text(r.mode), number(r.ate_rmse),
                       number(r.rpe_trans_rmse), number(r.precision_without_boundary),
                       number(r.precision), number(r.recall),
-                      number(r.frames ? 100.0 * r.tracked / r.frames : NAN), number(r.seconds),
-                      text(r.ok ? "" : r.error)});
+                      number(r.frames ? 100.0 * r.tracked / r.frames : NAN),
+                      number(r.frames ? 100.0 * r.posed / r.frames : NAN),
+                      number(r.ate_all_maps_rmse), number(r.seconds), text(r.ok ? "" : r.error)});
   return t;
 }
 

@@ -6,7 +6,11 @@
 //             (full, else the last rejection mode) with Eq. 9 for each
 //             (paper Tables 3 and 4);
 //   rejection: precision and recall against the simulator's labels, tracked
-//             share and lost frames per rejection mode.
+//             share and lost frames per rejection mode;
+//   frames:   every mode scored so that dropping frames cannot look good:
+//             ATE over the trajectory, the tracked share, and ATE over the
+//             frames of every atlas map (each aligned on its own) with the
+//             share of frames that have a pose in any map.
 #include <vector>
 
 #include "tools/harness/result_table.h"
@@ -19,6 +23,7 @@ Table ablation_table(const SweepPlan& plan, const SweepSummary& summary);
 Table ate_against_orb_table(const SweepPlan& plan, const SweepSummary& summary);
 Table rpe_against_orb_table(const SweepPlan& plan, const SweepSummary& summary);
 Table rejection_table(const SweepPlan& plan, const SweepSummary& summary);
+Table frames_table(const SweepPlan& plan, const SweepSummary& summary);
 // Every run: its levels, seed, mode and figures.
 Table runs_table(const SweepPlan& plan, const SweepSummary& summary);
 

@@ -426,6 +426,8 @@ RunSummary run_sequence(const RunOptions& o) {
   summary.frames = n;
   summary.trajectory = system.trajectory();
   summary.frame_states = system.frame_states();
+  for (const slam::AtlasPose& p : system.atlas_trajectory())
+    summary.atlas_trajectory.push_back(p.pose);
   summary.tracked = slam::tracked_share(summary.frame_states).tracked;
   summary.keyframes_trajectory = system.keyframe_trajectory();
   if (summary.trajectory.empty()) {

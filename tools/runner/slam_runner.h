@@ -120,7 +120,10 @@ struct RunSummary {
   int dense_keyframes = 0;  // keyframes fused into it
   int dense_left_out = 0;   // keyframes left out: a loaded map's, no frame or no mask of this run
   std::vector<StampedPose> trajectory;                // the tracked frames only
-  std::vector<slam::StampedFrameState> frame_states;  // every frame given
+  std::vector<slam::StampedFrameState> frame_states;  // every frame given, with its map
+  // Every frame with a pose, each in its atlas map's frame (the frames of
+  // frame_states with a map, in order; slam/io/frame_states_file.h).
+  std::vector<StampedPose> atlas_trajectory;
   std::vector<StampedPose> keyframes_trajectory;
   bool scored = false;
   eval::RejectionScore score;  // with the boundary class (MotionTruth)
