@@ -150,8 +150,24 @@ void LocalMapper::process_new_keyframe(KeyFrame* kf) {
   kf->update_connections();
 }
 
+namespace {
+
+// ORB-SLAM2's observation count for RGB-D: an observation with depth
+// weighs 2 (it alone fixes the point), one without 1.
+int weighted_observations(const MapPoint& mp) {
+  int n = 0;
+  for (const auto& [kf, index] : mp.observations) n += kf->features.has_depth(index) ? 2 : 1;
+  return n;
+}
+
+}  // namespace
+
 void LocalMapper::cull_map_points(KeyFrame* kf) {
-  // New points must be found where predicted and seen by 3 keyframes soon.
+  // New points must be found where predicted (a quarter of the times) and,
+  // two keyframes later, be seen by more than a keyframe with depth and one
+  // without (ORB-SLAM2: weighted observations > 3). Counting keyframes
+  // instead culled points seen with depth from two keyframes: a turning
+  // camera then lost its first map's points at the third keyframe.
   const long current = kf->id;
   for (auto it = recent_points_.begin(); it != recent_points_.end();) {
     MapPoint* mp = *it;
@@ -162,7 +178,7 @@ void LocalMapper::cull_map_points(KeyFrame* kf) {
     }
     if (mp->found_ratio() < 0.25f) {
       erase = true;
-    } else if (current - mp->first_keyframe_id >= 2 && mp->n_observations() <= 2) {
+    } else if (current - mp->first_keyframe_id >= 2 && weighted_observations(*mp) <= 3) {
       erase = true;
     } else if (current - mp->first_keyframe_id >= 3) {
       it = recent_points_.erase(it);  // survived: no longer recent

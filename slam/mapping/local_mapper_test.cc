@@ -107,27 +107,34 @@ TEST_F(LocalMapperTest, CullsNewPointsFoundInUnderAQuarterOfThePredictedFrames) 
   EXPECT_EQ(first->tracked_map_points(0), static_cast<int>(strong.size()));
 }
 
-TEST_F(LocalMapperTest, CullsNewPointsSeenByTwoKeyframesOrFewerTwoKeyframesLater) {
+// ORB-SLAM2's rule for RGB-D: two keyframes later a new point must have
+// weighted observations above 3, an observation with depth weighing 2.
+TEST_F(LocalMapperTest, CullsNewPointsSeenWithDepthByOneKeyframeTwoKeyframesLater) {
   LocalMapper mapper(map_, false);
   KeyFrame* first = add_first_keyframe();
   process(mapper, first);
-  // Two later keyframes see the even points only. Both wait in the queue
-  // together, so fusion (which runs once the queue is empty) cannot add the
-  // odd points to them before culling looks at those.
-  auto even = [first](size_t i, KeyFrame*) { return i % 2 ? nullptr : first->map_points[i]; };
-  mapper.insert_keyframe(add_keyframe(even));
-  mapper.insert_keyframe(add_keyframe(even));
+  // The second keyframe sees the points i % 3 = 0 and 1 (with depth, as
+  // the first), the third only i % 3 = 0. Both wait in the queue together,
+  // so fusion (which runs once the queue is empty) cannot add the others
+  // to them before culling looks at those.
+  auto seen = [first](int max_class) {
+    return [first, max_class](size_t i, KeyFrame*) {
+      return static_cast<int>(i % 3) <= max_class ? first->map_points[i] : nullptr;
+    };
+  };
+  mapper.insert_keyframe(add_keyframe(seen(1)));
+  mapper.insert_keyframe(add_keyframe(seen(0)));
   mapper.run_pending();
-  int even_alive = 0, odd_alive = 0, even_total = 0, odd_total = 0;
+  int alive[3] = {0, 0, 0}, total[3] = {0, 0, 0};
   for (size_t i = 0; i < features_.size(); ++i) {
     if (!features_.has_depth(i)) continue;
-    (i % 2 ? odd_total : even_total)++;
-    const bool alive = first->map_points[i] && !first->map_points[i]->bad;
-    (i % 2 ? odd_alive : even_alive) += alive;
+    total[i % 3]++;
+    alive[i % 3] += first->map_points[i] && !first->map_points[i]->bad;
   }
-  ASSERT_GT(odd_total, 100);
-  EXPECT_EQ(odd_alive, 0) << "seen by one keyframe, two keyframes later";
-  EXPECT_EQ(even_alive, even_total) << "seen by three keyframes";
+  ASSERT_GT(total[2], 100);
+  EXPECT_EQ(alive[0], total[0]) << "seen with depth by three keyframes";
+  EXPECT_EQ(alive[1], total[1]) << "seen with depth by two keyframes";
+  EXPECT_EQ(alive[2], 0) << "seen by one keyframe, two keyframes later";
 }
 
 TEST_F(LocalMapperTest, CullsKeyframesWhosePointsThreeOthersSeeAtTheSameScale) {

@@ -471,7 +471,12 @@ bool Tracker::need_keyframe(const Frame& frame, int inliers) const {
   if (frame.id < last_reloc_frame_ + params_.max_frames_between_kf &&
       n_kfs > params_.max_frames_between_kf)
     return false;
-  const int min_obs = n_kfs <= 2 ? 2 : 3;
+  // ORB-SLAM2 counts the reference's points seen by 2 keyframes (3 once
+  // the map has more than two); a map of one keyframe has only points of
+  // one observation, which left it no reference count at all, so a second
+  // keyframe came only from the close-point rule: with the few points
+  // that have depth under rejection, never, and the map died young.
+  const int min_obs = n_kfs <= 1 ? 1 : n_kfs <= 2 ? 2 : 3;
   const int ref_matches = reference_ ? reference_->tracked_map_points(min_obs) : 0;
   const bool idle = mapper_.idle();
   int tracked_close = 0, untracked_close = 0;

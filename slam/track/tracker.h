@@ -61,6 +61,22 @@ enum class TrackingMethod {
   kRelocalization,     // tracking was lost: matched against recent keyframes
 };
 
+inline const char* tracking_method_name(TrackingMethod m) {
+  switch (m) {
+    case TrackingMethod::kNone:
+      return "none";
+    case TrackingMethod::kInitialization:
+      return "initialization";
+    case TrackingMethod::kMotionModel:
+      return "motion_model";
+    case TrackingMethod::kReferenceKeyFrame:
+      return "reference_keyframe";
+    case TrackingMethod::kRelocalization:
+      return "relocalization";
+  }
+  return "?";
+}
+
 struct TrackingStats {
   TrackingMethod method = TrackingMethod::kNone;  // the last one tried
   int matches = 0;  // after the first stage (motion model / reference / reloc)

@@ -127,6 +127,25 @@ TEST_F(TrackerTest, StartsAMapThenFollowsTheCameraWithTheMotionModel) {
                                      FrameState::kOk, FrameState::kOk, FrameState::kOk}));
 }
 
+// A map of one keyframe takes its second once the frame tracks few of its
+// points (ORB-SLAM2's 40 % of the reference's), although those points are
+// seen by one keyframe only. Here two thirds of the view are hidden.
+TEST_F(TrackerTest, AOneKeyframeMapTakesASecondWhenFewOfItsPointsAreTracked) {
+  track_view(0);
+  ASSERT_EQ(map_.n_keyframes(), 1u);
+  test::RealFrame partly = test::turned_view(real_, camera_, test::turn(1));
+  const int cover = 2 * partly.bgr.cols / 3;
+  partly.bgr.colRange(0, cover).setTo(cv::Scalar::all(90));
+  partly.depth.colRange(0, cover).setTo(0);
+  TrackingStats stats;
+  tracker_.track(make_frame(partly.bgr, partly.depth), &stats);
+  mapper_.run_pending();
+  ASSERT_EQ(tracker_.state(), TrackingState::kOk);
+  expect_pose(1);
+  EXPECT_TRUE(stats.new_keyframe) << stats.inliers << " inliers";
+  EXPECT_EQ(map_.n_keyframes(), 2u);
+}
+
 // Keypoints without depth still match map points and constrain the pose
 // (two-dimensional residuals), so frames with no valid depth at all keep
 // the camera tracked on the map made before the gap.

@@ -285,7 +285,7 @@ RunSummary run_sequence(const RunOptions& o) {
         << "frame,timestamp,state,keypoints,kept,Z,Q,Q_to_P,P,detections,flow_u,flow_v,z,wait_ms,"
            "detect_ms,flow_ms,"
            "filter_ms,total_ms,true_positive,false_positive,false_negative,false_positive_z,"
-           "false_positive_q\n";
+           "false_positive_q,method,matches,inliers,local_points,new_keyframe\n";
   }
   std::optional<StagedDirectory> overlays;
   std::optional<std::ofstream> overlay_index;
@@ -393,15 +393,17 @@ RunSummary run_sequence(const RunOptions& o) {
     if (keypoint_rows)
       write_keypoint_rows(keypoint_rows->stream(), i, t, *filter, depth, truth ? &labels : nullptr);
     if (stats) {
-      char line[512];
+      char line[640];
       std::snprintf(line, sizeof(line),
                     "%zu,%.6f,%s,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%.2f,%.2f,%ld,%"
-                    "ld,%ld,%ld,%ld\n",
+                    "ld,%ld,%ld,%ld,%s,%d,%d,%d,%d\n",
                     i, t, slam::tracking_state_name(r.state), rs.total, rs.kept, rs.z, rs.q,
                     rs.q_to_p, rs.p, rs.detections, rs.mean_flow.x, rs.mean_flow.y, rs.z_threshold,
                     rs.wait_ms, rs.detect_ms, rs.flow_ms, rs.filter_ms, r.timing.total_ms,
                     frame_score.true_positive, frame_score.false_positive,
-                    frame_score.false_negative, fp_z, fp_q);
+                    frame_score.false_negative, fp_z, fp_q,
+                    slam::tracking_method_name(r.stats.method), r.stats.matches, r.stats.inliers,
+                    r.stats.local_points, r.stats.new_keyframe ? 1 : 0);
       stats->stream() << line;
     }
     if (o.on_frame) o.on_frame(i, r, filter, system);
