@@ -448,6 +448,8 @@ TEST(CliSlam, SavesAMapAndLocalisesInIt) {
   // uses): as many points as the map has, each observed at least twice.
   DepotResult info = depot("slam map info " + map);
   ASSERT_EQ(info.code, 0) << info.output;
+  EXPECT_NE(info.output.find(": map format 3, "), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find(" in 1 map of the atlas, camera "), std::string::npos) << info.output;
   const std::string ply = temp_path("points") + ".ply";
   DepotResult exported = depot("slam map export " + map + " -o " + ply);
   ASSERT_EQ(exported.code, 0) << exported.output;

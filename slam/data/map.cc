@@ -1,6 +1,7 @@
 #include "slam/data/map.h"
 
 #include <algorithm>
+#include <map>
 
 namespace depot::slam {
 
@@ -72,6 +73,16 @@ void Map::clear() {
   for (KeyFrame* kf : keyframes_) kf->bad = true;
   map_points_.clear();
   keyframes_.clear();
+}
+
+void Map::restore_atlas() {
+  std::map<int, size_t> keyframes;
+  for (const KeyFrame* kf : keyframes_) ++keyframes[kf->map_id];
+  next_map_ = keyframes.empty() ? 1 : keyframes.rbegin()->first + 1;
+  active_ = 0;
+  size_t most = 0;
+  for (const auto& [id, n] : keyframes)
+    if (n > most) active_ = id, most = n;
 }
 
 std::vector<KeyFrame*> Map::discard_map(int map_id) {

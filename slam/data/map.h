@@ -65,6 +65,10 @@ class Map {
   // one. The active map follows when it was `from`.
   void merge_maps(int from, int into, const Pose& T_into_from);
 
+  // After a saved atlas was loaded keyframe by keyframe: new maps get ids
+  // above every loaded one, and the map with most keyframes is active.
+  void restore_atlas();
+
   // Forgets every keyframe and point (they turn bad; memory stays, so old
   // pointers remain valid). Used when tracking is lost right after start.
   void clear();

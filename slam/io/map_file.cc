@@ -19,9 +19,10 @@ namespace depot::slam {
 namespace {
 
 constexpr char kMagic[8] = {'D', 'E', 'P', 'O', 'T', 'M', 'A', 'P'};
-// Version 2 adds the lens distortion to the camera; version 1 files (no
-// distortion) still load.
-constexpr uint32_t kVersion = 2;
+// Version 2 adds the lens distortion to the camera; version 3 the atlas
+// (each keyframe's map and origin flag, each point's map). Older files
+// still load (version 1: no distortion; before 3: one map).
+constexpr uint32_t kVersion = 3;
 constexpr uint32_t kOldestVersion = 1;
 constexpr int kDescriptorBytes = 32;
 
@@ -68,11 +69,8 @@ std::string describe(const PinholeCamera& c) {
 }  // namespace
 
 void save_map_file(const Map& map, const PinholeCamera& camera, const ScaleLevels& levels,
-                   uint32_t vocabulary_identity, const std::string& path, int only_map) {
-  const auto saved = [only_map](int map_id) { return only_map < 0 || map_id == only_map; };
-  std::vector<const KeyFrame*> keyframes;
-  for (const KeyFrame* kf : map.keyframes())
-    if (saved(kf->map_id)) keyframes.push_back(kf);
+                   uint32_t vocabulary_identity, const std::string& path) {
+  const std::vector<const KeyFrame*> keyframes(map.keyframes().begin(), map.keyframes().end());
   BinaryWriter out;
   out.put_bytes(kMagic, sizeof(kMagic));
   out.put<uint32_t>(kVersion);
@@ -87,6 +85,8 @@ void save_map_file(const Map& map, const PinholeCamera& camera, const ScaleLevel
     out.put<int64_t>(kf->id);
     out.put<int64_t>(kf->frame_id);
     out.put<double>(kf->timestamp);
+    out.put<int32_t>(kf->map_id);
+    out.put<uint8_t>(kf->map_origin ? 1 : 0);
     put_pose(out, kf->T_cw);
     const KeyFrame* parent = kf->parent();
     out.put<int64_t>(parent && !parent->bad ? parent->id : -1);
@@ -120,10 +120,11 @@ void save_map_file(const Map& map, const PinholeCamera& camera, const ScaleLevel
   // part of the map: neither saved, counted by `map info`, nor exported.
   std::vector<const MapPoint*> points;
   for (const MapPoint* mp : map.map_points())
-    if (!mp->bad && mp->n_observations() > 0 && saved(mp->map_id)) points.push_back(mp);
+    if (!mp->bad && mp->n_observations() > 0) points.push_back(mp);
   out.put<uint32_t>(static_cast<uint32_t>(points.size()));
   for (const MapPoint* mp : points) {
     out.put<int64_t>(mp->id);
+    out.put<int32_t>(mp->map_id);
     for (int k = 0; k < 3; ++k) out.put<double>(mp->position[k]);
     out.put<int64_t>(mp->reference && !mp->reference->bad ? mp->reference->id : -1);
     out.put<int64_t>(mp->first_keyframe_id);
@@ -145,6 +146,14 @@ void save_map_file(const Map& map, const PinholeCamera& camera, const ScaleLevel
 }
 
 namespace {
+
+// A map id of the atlas: small and not negative.
+int32_t take_map_id(BinaryReader& in, const std::string& path, const std::string& what) {
+  const int32_t id = in.take<int32_t>();
+  if (id < 0 || id > 1000000)
+    fail(path, "corrupt map (" + what + " in map " + std::to_string(id) + ")");
+  return id;
+}
 
 // Reads the file into `bytes` and checks its header and checksum.
 MapFileInfo read_header(const std::string& path, std::string& bytes) {
@@ -209,6 +218,12 @@ void read_body(const std::string& bytes, const std::string& path, MapFileInfo& i
     const int64_t id = in.take<int64_t>();
     const int64_t frame_id = in.take<int64_t>();
     const double timestamp = in.take<double>();
+    int32_t map_id = 0;
+    bool origin = k == 0;
+    if (info.version >= 3) {
+      map_id = take_map_id(in, path, "keyframe " + std::to_string(id));
+      origin = in.take<uint8_t>() != 0;
+    }
     const Pose T_cw = take_pose(in);
     r.parent = in.take<int64_t>();
     const uint32_t n_loops = in.take<uint32_t>();
@@ -260,7 +275,9 @@ void read_body(const std::string& bytes, const std::string& path, MapFileInfo& i
     frame.features.colours = std::move(colours);
     frame.T_cw = T_cw;
     frame.has_pose = true;
+    map.activate(map_id);
     r.kf = map.create_keyframe(frame);
+    r.kf->map_origin = origin;
     if (!kf_by_id.emplace(id, r.kf).second)
       fail(path, "corrupt map (keyframe " + std::to_string(id) + " twice)");
     records.push_back(std::move(r));
@@ -270,11 +287,14 @@ void read_body(const std::string& bytes, const std::string& path, MapFileInfo& i
   const uint32_t n_points = in.take<uint32_t>();
   for (uint32_t p = 0; p < n_points; ++p) {
     const int64_t id = in.take<int64_t>();
+    const int32_t map_id =
+        info.version >= 3 ? take_map_id(in, path, "point " + std::to_string(id)) : 0;
     Eigen::Vector3d x;
     for (int k = 0; k < 3; ++k) x[k] = in.take<double>();
     const int64_t reference = in.take<int64_t>();
     const auto ref = kf_by_id.find(reference);
     MapPoint* mp = map.create_map_point(x, ref == kf_by_id.end() ? nullptr : ref->second);
+    mp->map_id = map_id;
     const int64_t first_keyframe = in.take<int64_t>();
     const auto first = kf_by_id.find(first_keyframe);
     mp->first_keyframe_id = first == kf_by_id.end() ? 0 : first->second->id;
@@ -300,6 +320,10 @@ void read_body(const std::string& bytes, const std::string& path, MapFileInfo& i
       if (it == mp_by_id.end())
         fail(path, "corrupt map (a keyframe sees point " + std::to_string(r.points[i]) +
                        ", which is not in it)");
+      if (it->second->map_id != r.kf->map_id)
+        fail(path, "corrupt map (keyframe " + std::to_string(r.kf->id) + " of map " +
+                       std::to_string(r.kf->map_id) + " sees a point of map " +
+                       std::to_string(it->second->map_id) + ")");
       it->second->add_observation(r.kf, i);
       r.kf->add_map_point(it->second, i);
     }
@@ -316,8 +340,10 @@ void read_body(const std::string& bytes, const std::string& path, MapFileInfo& i
       if (const auto it = kf_by_id.find(l); it != kf_by_id.end())
         r.kf->loop_edges.insert(it->second);
   }
+  map.restore_atlas();
   info.keyframes = map.n_keyframes();
   info.points = map.n_map_points();
+  info.maps = map.map_ids().size();
 }
 
 }  // namespace

@@ -13,7 +13,9 @@
 // camera (i32 width, height; f64 fx, fy, cx, cy, bf; from version 2 f64 k1,
 // k2, p1, p2, k3; keypoints are stored undistorted), i32 pyramid levels,
 // f32 scale factor, u32 keyframe count, keyframes, u32 point count, points,
-// u32 CRC-32.
+// u32 CRC-32. From version 3 a keyframe holds its map (i32) and origin flag
+// (u8) after its timestamp and a point its map (i32) after its id: every map
+// of the atlas is saved and loaded as it was.
 #include <cstdint>
 #include <string>
 
@@ -29,15 +31,15 @@ struct MapFileInfo {
   int levels = 0;
   float scale_factor = 0;
   size_t keyframes = 0, points = 0;  // after loading
+  size_t maps = 0;                   // maps of the atlas, after loading
   size_t header_bytes = 0;
 };
 
-// Writes the map's good keyframes and points through a staged file (a
-// failure leaves no file, and no half file ever replaces an old one): those
-// of one map of the atlas (`only_map`), or of all when it is -1. The caller
-// holds map.mutex().
+// Writes the map's good keyframes and points, every map of the atlas with
+// its id and origin, through a staged file (a failure leaves no file, and no
+// half file ever replaces an old one). The caller holds map.mutex().
 void save_map_file(const Map& map, const PinholeCamera& camera, const ScaleLevels& levels,
-                   uint32_t vocabulary_identity, const std::string& path, int only_map = -1);
+                   uint32_t vocabulary_identity, const std::string& path);
 
 // Reads a saved map into `map`, which must be empty; keyframes and points
 // are renumbered in their saved order. Throws depot::Error naming the file

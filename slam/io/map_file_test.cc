@@ -28,6 +28,45 @@ using namespace depot::slam::test;
 // Magic, version, vocabulary, camera (2 x i32, 10 x f64), levels, scale.
 constexpr size_t kHeaderBytes = 8 + 4 + 4 + 8 + 10 * 8 + 4 + 4;
 
+// The same file as version 2 wrote it: without each keyframe's map and
+// origin flag and each point's map (walks the records of map_file.h's
+// layout), its checksum renewed.
+std::string as_version_2(const std::string& v3) {
+  std::string out = v3.substr(0, kHeaderBytes);
+  out[8] = 2;
+  size_t at = kHeaderBytes;
+  auto copy = [&](size_t n) {
+    out += v3.substr(at, n);
+    at += n;
+  };
+  auto count = [&]() {
+    uint32_t n = 0;
+    std::memcpy(&n, &v3[at], 4);
+    copy(4);
+    return n;
+  };
+  const uint32_t keyframes = count();
+  for (uint32_t k = 0; k < keyframes; ++k) {
+    copy(3 * 8);  // id, frame id, timestamp
+    at += 4 + 1;  // map, origin
+    copy(12 * 8 + 8);
+    copy(8 * size_t{count()});   // loop edges
+    copy(12 * size_t{count()});  // covisible keyframes
+    const uint32_t n = count();
+    copy(n * size_t{7 * 4 + 3 + 8 + 32});
+  }
+  const uint32_t points = count();
+  for (uint32_t p = 0; p < points; ++p) {
+    copy(8);  // id
+    at += 4;  // map
+    copy(3 * 8 + 8 + 8 + 4 + 4 + 32 + 3 * 8 + 4 + 4);
+  }
+  copy(4);
+  const uint32_t crc = crc32_of(out, out.size() - 4);
+  std::memcpy(&out[out.size() - 4], &crc, 4);
+  return out;
+}
+
 class MapFileTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -78,7 +117,8 @@ class MapFileTest : public ::testing::Test {
 TEST_F(MapFileTest, WhatIsLoadedIsWhatWasSaved) {
   Map loaded;
   const MapFileInfo info = load_map_file(path_, camera_, levels(), kVocabulary, loaded);
-  EXPECT_EQ(info.version, 2u);
+  EXPECT_EQ(info.version, 3u);
+  EXPECT_EQ(info.maps, 1u);
   EXPECT_EQ(info.keyframes, scene_.map.n_keyframes());
   EXPECT_EQ(info.points, scene_.map.n_map_points());
   ASSERT_EQ(loaded.n_keyframes(), 4u);  // the culled one left out
@@ -140,9 +180,9 @@ TEST_F(MapFileTest, BadFilesAreOneClearError) {
   write(corrupt);
   expect(load_error(), "checksum");
   std::string other_version = good;
-  other_version[8] = 3;
+  other_version[8] = 4;
   write(other_version);
-  expect(load_error(), "version 3, this build reads 1 to 2");
+  expect(load_error(), "version 4, this build reads 1 to 3");
   write("not a map at all");
   expect(load_error(), "not a depot map");
   write(good);
@@ -162,8 +202,9 @@ TEST_F(MapFileTest, BadFilesAreOneClearError) {
 TEST_F(MapFileTest, ACountLargerThanTheFileIsOneClearError) {
   std::string bad = bytes();
   // The first keyframe's loop edge count: after the header, the
-  // keyframe count and its id, frame id, timestamp, pose and parent.
-  const size_t loops_at = kHeaderBytes + 4 + 3 * 8 + 12 * 8 + 8;
+  // keyframe count and its id, frame id, timestamp, map, origin, pose and
+  // parent.
+  const size_t loops_at = kHeaderBytes + 4 + 3 * 8 + 4 + 1 + 12 * 8 + 8;
   const uint32_t huge = 0xfffffff0u;
   std::memcpy(&bad[loops_at], &huge, 4);
   const uint32_t crc = crc32_of(bad, bad.size() - 4);
@@ -180,7 +221,7 @@ TEST_F(MapFileTest, AKeypointOutsideTheImageIsOneClearError) {
   std::string bad = bytes();
   // The first keypoint's x: after the first keyframe's loop edges, its
   // covisible keyframes and its keypoint count.
-  const size_t loops_at = kHeaderBytes + 4 + 3 * 8 + 12 * 8 + 8;
+  const size_t loops_at = kHeaderBytes + 4 + 3 * 8 + 4 + 1 + 12 * 8 + 8;
   uint32_t n_loops = 0, n_covisible = 0;
   std::memcpy(&n_loops, &bad[loops_at], 4);
   const size_t covisible_at = loops_at + 4 + 8 * n_loops;
@@ -200,8 +241,12 @@ TEST_F(MapFileTest, TheLensIsPartOfTheCameraAndVersionOneFilesStillLoad) {
   auto expect = [](const std::string& error, const std::string& needle) {
     EXPECT_NE(error.find(needle), std::string::npos) << error;
   };
+  // A version 2 file (one map) loads as it did.
+  const std::string v2 = as_version_2(bytes());
+  write(v2);
+  EXPECT_EQ(load_error(), "");
   // A version 1 file: the same map without the five distortion values.
-  std::string v1 = bytes();
+  std::string v1 = v2;
   v1.erase(kHeaderBytes - 8 - 40, 40);
   v1[8] = 1;
   uint32_t crc = crc32_of(v1, v1.size() - 4);
@@ -221,6 +266,42 @@ TEST_F(MapFileTest, TheLensIsPartOfTheCameraAndVersionOneFilesStillLoad) {
   EXPECT_EQ(info.camera.lens.k1, -0.25);
   EXPECT_EQ(info.camera.lens.k2, 0.08);
   EXPECT_EQ(info.keyframes, scene_.map.n_keyframes());
+}
+
+// The atlas: every map is saved with its id and origin, and loads as it
+// was; maps begun after loading get new ids.
+TEST_F(MapFileTest, EveryMapOfTheAtlasIsSavedAndLoaded) {
+  // The scene's last two keyframes and their points as a second map.
+  std::vector<KeyFrame*> kfs(scene_.map.keyframes().begin(), scene_.map.keyframes().end());
+  for (size_t k = kfs.size() - 2; k < kfs.size(); ++k) kfs[k]->map_id = 3;
+  kfs[kfs.size() - 2]->map_origin = true;
+  for (MapPoint* mp : scene_.map.map_points())
+    if (mp->reference && mp->reference->map_id == 3) mp->map_id = 3;
+  // A point seen from both maps would tie them: let each keep its own.
+  for (MapPoint* mp : scene_.map.map_points()) {
+    std::vector<KeyFrame*> others;
+    for (const auto& [kf, index] : mp->observations)
+      if (kf->map_id != mp->map_id) others.push_back(kf);
+    for (KeyFrame* kf : others) {
+      kf->erase_map_point(mp->observations.at(kf));
+      mp->erase_observation(kf);
+    }
+  }
+  save_map_file(scene_.map, camera_, levels(), kVocabulary, path_);
+  Map loaded;
+  const MapFileInfo info = load_map_file(path_, camera_, levels(), kVocabulary, loaded);
+  EXPECT_EQ(info.maps, 2u);
+  EXPECT_EQ(loaded.map_ids(), (std::vector<int>{0, 3}));
+  std::vector<KeyFrame*> back(loaded.keyframes().begin(), loaded.keyframes().end());
+  ASSERT_EQ(back.size(), kfs.size());
+  for (size_t k = 0; k < kfs.size(); ++k) {
+    EXPECT_EQ(back[k]->map_id, kfs[k]->map_id) << k;
+    EXPECT_EQ(back[k]->map_origin, kfs[k]->map_origin) << k;
+  }
+  for (MapPoint* mp : loaded.map_points())
+    for (const auto& [kf, index] : mp->observations) EXPECT_EQ(kf->map_id, mp->map_id);
+  EXPECT_EQ(loaded.active_map(), 0) << "the map with most keyframes";
+  EXPECT_EQ(loaded.begin_map(), 4) << "a new map's id is above every loaded one";
 }
 
 TEST_F(MapFileTest, LoadsOnlyIntoAnEmptyMap) {

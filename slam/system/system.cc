@@ -203,9 +203,8 @@ void System::load_map(const std::string& path) {
 void System::save_map(const std::string& path) const {
   std::lock_guard<std::mutex> lock(map_.mutex());
   if (map_.n_keyframes() == 0) fail(path, "no map to save: no frame was tracked");
-  // The main map of the atlas: the others are in frames of their own.
-  save_map_file(map_, settings_.camera, levels_, vocabulary_identity(places_.vocabulary()), path,
-                main_map(tracker_.trajectory()));
+  // Every map of the atlas, each in its own frame.
+  save_map_file(map_, settings_.camera, levels_, vocabulary_identity(places_.vocabulary()), path);
 }
 
 void System::start_localisation() {

@@ -76,7 +76,8 @@ class System {
   // Map reuse (slam/io/map_file.h). load_map: before the first frame, the
   // saved map becomes this system's (its vocabulary, camera and ORB
   // pyramid must be this run's), and the first frame relocalises in it.
-  // save_map: the map as it is (call finish() first); a staged write.
+  // save_map: every map of the atlas as it is (call finish() first); a
+  // staged write.
   // start_localisation: from the next frame on, track against the map as it
   // is without changing it (no keyframes, no points, no reset), starting
   // with a relocalisation; depot::Error when the map is empty.

@@ -36,11 +36,13 @@ void info(const std::string& path) {
   const slam::PinholeCamera& c = i.camera;
   const std::string lens = c.distorted() ? " lens " + describe_lens(c.lens) : "";
   std::printf(
-      "%s: map format %u, %zu keyframes, %zu map points (%.1f observations each), camera %dx%d "
-      "fx %.1f fy %.1f cx %.1f cy %.1f%s, ORB pyramid %d levels x %.2f, vocabulary identity %08x\n",
+      "%s: map format %u, %zu keyframes, %zu map points (%.1f observations each) in %zu map%s of "
+      "the atlas, camera %dx%d fx %.1f fy %.1f cx %.1f cy %.1f%s, ORB pyramid %d levels x %.2f, "
+      "vocabulary identity %08x\n",
       path.c_str(), i.version, i.keyframes, i.points,
-      i.points ? static_cast<double>(observations) / i.points : 0.0, c.width, c.height, c.fx, c.fy,
-      c.cx, c.cy, lens.c_str(), i.levels, i.scale_factor, i.vocabulary);
+      i.points ? static_cast<double>(observations) / i.points : 0.0, i.maps, i.maps == 1 ? "" : "s",
+      c.width, c.height, c.fx, c.fy, c.cx, c.cy, lens.c_str(), i.levels, i.scale_factor,
+      i.vocabulary);
 }
 
 void export_points(const std::string& path, const std::string& output) {
