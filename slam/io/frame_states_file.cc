@@ -10,16 +10,24 @@
 
 namespace depot::slam {
 
-std::string frame_states_path(const std::string& trajectory_path) {
+namespace {
+
+// A file beside a trajectory: "run.txt" -> "run<suffix>", any other name
+// with the suffix appended.
+std::string beside_trajectory(const std::string& trajectory_path, const std::string& suffix) {
   const std::filesystem::path p(trajectory_path);
-  if (p.extension() == ".txt") return (p.parent_path() / p.stem()).string() + ".states.txt";
-  return trajectory_path + ".states.txt";
+  if (p.extension() == ".txt") return (p.parent_path() / p.stem()).string() + suffix;
+  return trajectory_path + suffix;
+}
+
+}  // namespace
+
+std::string frame_states_path(const std::string& trajectory_path) {
+  return beside_trajectory(trajectory_path, ".states.txt");
 }
 
 std::string atlas_trajectory_path(const std::string& trajectory_path) {
-  const std::filesystem::path p(trajectory_path);
-  if (p.extension() == ".txt") return (p.parent_path() / p.stem()).string() + ".atlas.txt";
-  return trajectory_path + ".atlas.txt";
+  return beside_trajectory(trajectory_path, ".atlas.txt");
 }
 
 std::string format_frame_states(const std::vector<StampedFrameState>& states,

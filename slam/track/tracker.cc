@@ -162,7 +162,12 @@ void Tracker::follow_replaced_points_in_last_frame() {
 
 void Tracker::reset() {
   forget_motion();
+  abandon_frames(-1);
+}
+
+void Tracker::abandon_frames(int map_id) {
   for (TrajectoryEntry& e : trajectory_) {
+    if (map_id >= 0 && (!e.reference || e.reference->map_id != map_id)) continue;
     e.reference = nullptr;
     if (is_tracked(e.state)) e.state = FrameState::kAbandoned;
   }
@@ -183,11 +188,7 @@ void Tracker::discard_active_map() {
   const int discarded = map_.active_map();
   for (KeyFrame* kf : map_.discard_map(discarded))
     if (places_) places_->erase(kf);
-  for (TrajectoryEntry& e : trajectory_) {
-    if (!e.reference || e.reference->map_id != discarded) continue;
-    e.reference = nullptr;
-    if (is_tracked(e.state)) e.state = FrameState::kAbandoned;
-  }
+  abandon_frames(discarded);
   const bool others_left = map_.n_keyframes() > 0;
   forget_motion();
   map_.begin_map();
@@ -295,7 +296,7 @@ bool Tracker::relocalize(Frame& frame, int& matches, int skip_map) {
   const std::vector<KeyFrame*> candidates = places_->relocalisation_candidates(frame, skip_map);
   int tried = 0;
   for (KeyFrame* kf : candidates) {
-    if (kf->bad || kf->map_id == skip_map) continue;
+    if (kf->bad) continue;
     if (tried++ >= params_.relocalisation_candidates) break;
     std::vector<MapPoint*> found;
     int n;

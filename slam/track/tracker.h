@@ -150,6 +150,9 @@ class Tracker {
   // replaced by their survivors (ORB-SLAM2's CheckReplacedInLastFrame).
   // Back to NOT_INITIALIZED with no last frame, velocity or local map.
   void forget_motion();
+  // The frames tracked in map `map_id` (every map when -1) lose their pose:
+  // ABANDONED.
+  void abandon_frames(int map_id);
   void follow_replaced_points_in_last_frame();
   bool track_motion_model(Frame& frame, int& matches);
   bool track_reference_keyframe(Frame& frame, int& matches);

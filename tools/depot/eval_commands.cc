@@ -120,9 +120,11 @@ std::string states_file(const AteArgs& args) {
 
 // ATE over every map of the atlas (eval/maps_ate.h), when the states name
 // each frame's map and the atlas trajectory is beside the estimate.
-std::optional<eval::MapsAte> maps_ate(const AteArgs& args, const std::string& states_path,
+std::optional<eval::MapsAte> maps_ate(const AteArgs& args,
+                                      const std::vector<StampedPose>& reference,
+                                      const std::string& states_path,
+                                      const std::vector<slam::StampedFrameState>& states,
                                       eval::AlignmentKind alignment) {
-  const std::vector<slam::StampedFrameState> states = slam::read_frame_states(states_path);
   const std::vector<int> maps = slam::maps_of_posed_frames(states);
   const std::string atlas_path = slam::atlas_trajectory_path(args.common.estimate_path);
   std::error_code ec;
@@ -135,20 +137,23 @@ std::optional<eval::MapsAte> maps_ate(const AteArgs& args, const std::string& st
                  atlas_path.c_str(), atlas.size(), states_path.c_str(), maps.size());
     return std::nullopt;
   }
-  return eval::compute_maps_ate(read_tum_trajectory(args.common.reference_path), atlas, maps,
-                                states.size(), args.common.association, alignment,
-                                args.common.reference_path, atlas_path);
+  return eval::compute_maps_ate(reference, atlas, maps, states.size(), args.common.association,
+                                alignment, args.common.reference_path, atlas_path);
 }
 
 void run_ate(const AteArgs& args) {
   check_outputs(args.common);
-  const eval::MatchedTrajectories matched = eval::load_matched_trajectories(
-      args.common.reference_path, args.common.estimate_path, args.common.association);
+  const std::vector<StampedPose> reference = read_tum_trajectory(args.common.reference_path);
+  const eval::MatchedTrajectories matched = eval::match_trajectories(
+      reference, read_tum_trajectory(args.common.estimate_path), args.common.association,
+      args.common.reference_path, args.common.estimate_path);
   // ATE only sees the frames with a pose; the states say how many were given.
   const std::string states_path = states_file(args);
+  std::vector<slam::StampedFrameState> states;
   std::optional<slam::TrackedShare> tracked;
   if (!states_path.empty()) {
-    tracked = slam::tracked_share(slam::read_frame_states(states_path));
+    states = slam::read_frame_states(states_path);
+    tracked = slam::tracked_share(states);
     if (tracked->tracked != matched.estimate_size)
       std::fprintf(stderr,
                    "depot: warning: %s: lists %zu tracked frames but %s has %zu poses (is it the "
@@ -160,7 +165,8 @@ void run_ate(const AteArgs& args) {
   options.alignment = args.sim3 ? eval::AlignmentKind::kSimilarity : eval::AlignmentKind::kRigid;
   const eval::AteResult ate = eval::compute_ate(matched, options);
   const std::optional<eval::MapsAte> all_maps =
-      states_path.empty() ? std::nullopt : maps_ate(args, states_path, options.alignment);
+      states_path.empty() ? std::nullopt
+                          : maps_ate(args, reference, states_path, states, options.alignment);
 
   nlohmann::json report = eval::ate_report_json(matched, ate);
   double improvement = 0.0;
@@ -203,9 +209,9 @@ void run_ate(const AteArgs& args) {
                 100.0 * tracked->share(), tracked->tracked, tracked->frames, states_path.c_str());
   if (all_maps) {
     std::printf(
-        "  all maps       rmse %.6f m over the %zu frames with a pose in any of %zu maps (%.1f %% "
-        "of "
-        "those given), each map aligned on its own; the trajectory's map holds %.1f %%\n",
+        "  all maps       rmse %.6f m over the %zu frames with a pose in any of %zu maps "
+        "(%.1f %% of those given), each map aligned on its own; the trajectory's map holds "
+        "%.1f %%\n",
         all_maps->statistics.rmse, all_maps->posed, all_maps->maps, 100.0 * all_maps->posed_share(),
         100.0 * all_maps->main_map_share());
     if (all_maps->maps_left_out)
