@@ -5,6 +5,7 @@
 // give the figures they must; bad files are one error line and no report.
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -213,6 +214,34 @@ TEST(CliRejection, BadInputIsOneErrorLineAndNoReport) {
   const std::string real = temp_path("real");
   fs::create_directories(real);
   expect_error(real, header + good, "not a simulated dataset");
+}
+
+// Movers without a detection: with a detector that finds nothing, masked
+// rejects nothing, unless motion-found objects are on; then the cat walking
+// before the patrol's camera is rejected by its motion alone.
+TEST(CliRejection, MotionFindsMoversNoDetectorNamed) {
+  const std::string dataset = render_small({"depot_patrol", 40, 320, false, 1});
+  auto with_depth = [&](const std::string& extra, double* precision, double* recall) {
+    const DepotResult r =
+        depot("slam run " + dataset + " -o " + temp_path("movers") +
+              ".txt --mode masked --mapping sync -q --detector-set miss_rate=1" + extra);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const size_t at = r.output.find("keypoints with depth");
+    ASSERT_NE(at, std::string::npos) << r.output;
+    const std::string line = r.output.substr(at, r.output.find('\n', at) - at);
+    char p[16] = {}, q[16] = {};
+    ASSERT_EQ(
+        std::sscanf(line.c_str() + line.find("precision"), "precision %15s recall %15s", p, q), 2)
+        << line;
+    *precision = std::atof(p);  // "nan" when nothing was rejected
+    *recall = std::atof(q);
+  };
+  double precision = 0, recall = 1;
+  with_depth("", &precision, &recall);
+  EXPECT_EQ(recall, 0.0);
+  with_depth(" --rejection-set motion=true", &precision, &recall);
+  EXPECT_GE(recall, 0.3);      // 0.40 measured
+  EXPECT_GE(precision, 0.75);  // 0.84 measured
 }
 
 }  // namespace

@@ -1,10 +1,12 @@
 #include "slam/reject/rejection_filter.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 
 #include "common/error.h"
+#include "slam/detect/nms.h"
 
 namespace depot::slam {
 namespace {
@@ -141,7 +143,7 @@ void RejectionFilter::filter(const FrameImages& images, const std::vector<cv::Ke
       break;
     case RejectionMode::kMasked: {
       std::vector<float> depth;  // only the camera-motion flow test reads it
-      if (params_.ego_motion_flow && images.camera)
+      if ((params_.ego_motion_flow || params_.motion.enabled) && images.camera)
         depth = keypoint_depths(images.depth, keypoints);
       sets_ = masked_sets(images, keypoints);
       decide_sets(images, keypoints, depth, keep);
@@ -175,7 +177,7 @@ cv::Mat RejectionFilter::moving_mask(cv::Size image) const {
     for (size_t k = 0; k < objects_.size(); ++k) {
       const Detection& d = objects_[k].detection;
       const ObjectMask& object = masks_[k];
-      const bool dynamic = classes_.classify(d.class_name) == MotionClass::kDynamic;
+      const bool dynamic = object_class(objects_[k]) == MotionClass::kDynamic;
       if (!dynamic && !flow_says_moving([&](const cv::KeyPoint& kp) {
             return object.valid() ? object.touches(kp, params_.scale_factor, params_.mask_reach)
                                   : d.box.contains(kp.pt);
@@ -218,7 +220,17 @@ std::vector<PointSet> RejectionFilter::masked_sets(const FrameImages& images,
   std::vector<Detection> movable;  // dynamic and potentially dynamic objects
   for (const Detection& d : detections_)
     if (classes_.classify(d.class_name) != MotionClass::kStatic) movable.push_back(d);
+  movable.insert(movable.end(), motion_detections_.begin(), motion_detections_.end());
+  motion_detections_.clear();
   objects_ = box_tracker_.update(movable);
+  // A motion-found object is found again while it moves; one not found is
+  // still or gone, and is not carried on.
+  objects_.erase(std::remove_if(objects_.begin(), objects_.end(),
+                                [](const TrackedBox& object) {
+                                  return object.missed > 0 &&
+                                         object.detection.class_name == kMotionClass;
+                                }),
+                 objects_.end());
   masks_.clear();
   const bool segment = !person_mask_.empty();
   for (TrackedBox& object : objects_) {
@@ -244,11 +256,11 @@ std::vector<PointSet> RejectionFilter::masked_sets(const FrameImages& images,
 
   std::vector<PointSet> object_sets;  // Z for dynamic objects, Q for potentially dynamic ones
   for (const TrackedBox& object : objects_)
-    object_sets.push_back(classes_.classify(object.detection.class_name) == MotionClass::kDynamic
-                              ? PointSet::kZ
-                              : PointSet::kQ);
+    object_sets.push_back(object_class(object) == MotionClass::kDynamic ? PointSet::kZ
+                                                                        : PointSet::kQ);
   std::vector<PointSet> sets(keypoints.size(), PointSet::kP);
   std::vector<int> dynamic_object(keypoints.size(), -1);
+  on_detected_object_.assign(keypoints.size(), 0);
   for (size_t i = 0; i < keypoints.size(); ++i) {
     const cv::KeyPoint& kp = keypoints[i];
     for (size_t k = 0; k < objects_.size() && sets[i] != PointSet::kZ; ++k) {
@@ -259,6 +271,7 @@ std::vector<PointSet> RejectionFilter::masked_sets(const FrameImages& images,
                                  ? mask.touches(kp, params_.scale_factor, params_.mask_reach)
                                  : objects_[k].detection.box.contains(kp.pt);
       if (!on_object) continue;
+      if (objects_[k].detection.class_name != kMotionClass) on_detected_object_[i] = 1;
       sets[i] = std::max(sets[i], object_set);
       if (object_set == PointSet::kZ) dynamic_object[i] = static_cast<int>(k);
     }
@@ -293,7 +306,12 @@ void RejectionFilter::decide_sets(const FrameImages& images,
   }
   stats_.q = static_cast<int>(q_index.size());
   const bool test_p = params_.test_static_points;
-  if ((q_index.empty() && !test_p) || !flow_.has_previous()) {
+  // Movers without a detection: every point with depth outside a detector's
+  // object is tested against the camera's motion too.
+  const bool find_movers =
+      mode_ == RejectionMode::kMasked && params_.motion.enabled && images.camera;
+  const bool fit = ego || find_movers;
+  if ((q_index.empty() && !test_p && !find_movers) || !flow_.has_previous()) {
     stats_.q_to_p = stats_.q;  // nothing to test, or no previous frame to test against
     stats_.p = static_cast<int>(p_index.size()) + stats_.q_to_p;
     return;
@@ -303,8 +321,8 @@ void RejectionFilter::decide_sets(const FrameImages& images,
   const auto tf = std::chrono::steady_clock::now();
   std::vector<size_t> reference;
   const size_t wanted =
-      std::max(1, ego ? 3 * params_.max_reference_points : params_.max_reference_points);
-  const size_t step = test_p ? 1 : std::max<size_t>(1, p_index.size() / wanted);
+      std::max(1, fit ? 3 * params_.max_reference_points : params_.max_reference_points);
+  const size_t step = test_p || find_movers ? 1 : std::max<size_t>(1, p_index.size() / wanted);
   for (size_t k = 0; k < p_index.size(); k += step) reference.push_back(p_index[k]);
   std::vector<cv::Point2f> pts, flow;
   std::vector<uint8_t> ok;
@@ -316,7 +334,7 @@ void RejectionFilter::decide_sets(const FrameImages& images,
   const std::vector<uint8_t> ref_ok(ok.begin(), ok.begin() + n_ref);
   const FlowTestResult test = mean_static_flow(ref_flow, ref_ok, params_.test);
   EgoMotionModel motion;
-  if (ego) {
+  if (fit) {
     std::vector<cv::Point2f> ref_pts(pts.begin(), pts.begin() + n_ref);
     std::vector<float> ref_depth;
     for (size_t i : reference) ref_depth.push_back(depth[i]);
@@ -325,7 +343,7 @@ void RejectionFilter::decide_sets(const FrameImages& images,
   stats_.mean_flow = test.mean;
   stats_.z_threshold = test.z;
   stats_.ego_motion = motion.valid;
-  const float ego_threshold = ego ? scaled_px(params_.ego.threshold_px, *images.camera) : 0.0f;
+  const float ego_threshold = fit ? scaled_px(params_.ego.threshold_px, *images.camera) : 0.0f;
   // With a camera motion, re-track each tested point from where a static
   // point would have been (small window, so a nearby moving occluder does
   // not drag it); it moves when LK fails there or settles away from the
@@ -335,8 +353,15 @@ void RejectionFilter::decide_sets(const FrameImages& images,
     std::vector<size_t> tested;
     std::vector<cv::Point2f> current, previous, near, far;
     for (size_t j = 0; j < pts.size(); ++j) {
-      if (j < n_ref && !test_p) continue;
       const size_t kp = j < n_ref ? reference[j] : q_index[j - n_ref];
+      // Q (and P with test_p) by the camera-motion test; for movers, P and
+      // the keypoints of motion-found objects (so they are found again).
+      const bool on_motion_object =
+          j >= n_ref && !dynamic_object_.empty() && dynamic_object_[kp] >= 0 &&
+          objects_[dynamic_object_[kp]].detection.class_name == kMotionClass;
+      const bool by_ego = ego && (j >= n_ref || test_p);
+      const bool for_movers = find_movers && depth[kp] > 0 && (j < n_ref || on_motion_object);
+      if (!by_ego && !for_movers) continue;
       cv::Point2f a, b;
       if (!predict_static_previous(motion, *images.camera, pts[j], depth[kp],
                                    params_.ego.no_depth_min, &a, &b))
@@ -382,8 +407,11 @@ void RejectionFilter::decide_sets(const FrameImages& images,
     }
     object_moves.assign(objects_.size(), 1);
     for (size_t o = 0; o < objects_.size(); ++o) {
-      object_moves[o] = tracked[o] < params_.still_object_min_points ||
-                        moving[o] >= params_.still_object_max_moving * tracked[o];
+      // Too few tracked keypoints to tell: a detected object of a dynamic
+      // class moves, a motion-found one (only motion made it an object) not.
+      object_moves[o] = tracked[o] < params_.still_object_min_points
+                            ? objects_[o].detection.class_name != kMotionClass
+                            : moving[o] >= params_.still_object_max_moving * tracked[o];
       stats_.still_objects += !object_moves[o];  // tracked points: a dynamic object
     }
   }
@@ -409,7 +437,92 @@ void RejectionFilter::decide_sets(const FrameImages& images,
         keep[reference[k]] = 0;
         stats_.p_rejected++;
       }
-  stats_.p = static_cast<int>(p_index.size()) - stats_.p_rejected + stats_.q_to_p;
+  int p_on_movers = 0;
+  if (find_movers && motion.valid) {
+    std::vector<int8_t> moving(keypoints.size(), -1);
+    for (size_t j = 0; j < pts.size(); ++j)
+      if (guided[j]) moving[j < n_ref ? reference[j] : q_index[j - n_ref]] = guided_moves[j];
+    p_on_movers = reject_motion_objects(images, keypoints, depth, moving, keep);
+  }
+  stats_.p = static_cast<int>(p_index.size()) - stats_.p_rejected - p_on_movers + stats_.q_to_p;
+}
+
+MotionClass RejectionFilter::object_class(const TrackedBox& object) const {
+  if (object.detection.class_name == kMotionClass) return MotionClass::kDynamic;
+  return classes_.classify(object.detection.class_name);
+}
+
+int RejectionFilter::reject_motion_objects(const FrameImages& images,
+                                           const std::vector<cv::KeyPoint>& keypoints,
+                                           const std::vector<float>& depth,
+                                           const std::vector<int8_t>& moving,
+                                           std::vector<uint8_t>& keep) {
+  const auto t0 = std::chrono::steady_clock::now();
+  // What a detector's box holds is decided already (its object's outline
+  // drags LK on the background around it, so the whole searched region is
+  // left out); the rest is evidence.
+  std::vector<cv::Rect> detected_regions;
+  for (const TrackedBox& object : objects_)
+    if (object.detection.class_name != kMotionClass)
+      detected_regions.push_back(
+          search_region(object.detection.box, images.gray.size(), params_.mask.grow));
+  auto near_detected = [&](const cv::Point2f& p) {
+    for (const cv::Rect& r : detected_regions)
+      if (r.contains(cv::Point(static_cast<int>(p.x), static_cast<int>(p.y)))) return true;
+    return false;
+  };
+  std::vector<TestedKeypoint> tested;
+  for (size_t i = 0; i < keypoints.size(); ++i)
+    if (moving[i] >= 0 && depth[i] > 0 && !near_detected(keypoints[i].pt))
+      tested.push_back({keypoints[i].pt, depth[i], moving[i] == 1});
+  const std::vector<MotionObject> found =
+      find_motion_objects(tested, images.gray.size(), params_.motion);
+  int p_rejected = 0;
+  const size_t tracked_objects = objects_.size();
+  for (const MotionObject& object : found) {
+    ObjectMask mask =
+        segment_object(images.depth, object.box, params_.mask, images.camera, object.depth);
+    if (!mask.valid()) continue;
+    const cv::Rect2f bounds = mask.bounds();
+    Detection detection;
+    detection.box = bounds;
+    detection.class_name = kMotionClass;
+    detection.confidence = 1.0f;
+    motion_detections_.push_back(detection);  // the next frame's box for it
+    stats_.motion_objects++;
+    // One tracked from the last frame is that object found again: its
+    // keypoints were decided by the still-object test, the rest of its mask
+    // is rejected now. A new one only joins the next frame's boxes (a
+    // single frame's group is often a slip of the camera-motion fit).
+    bool tracked = false;
+    for (size_t k = 0; k < tracked_objects && !tracked; ++k)
+      tracked = objects_[k].detection.class_name == kMotionClass &&
+                iou(objects_[k].detection.box, bounds) >= params_.tracking.min_iou;
+    if (!tracked && !params_.motion.reject_on_first_sight) continue;
+    for (size_t i = 0; i < keypoints.size(); ++i) {
+      if (!keep[i] || on_detected_object_[i] ||
+          !mask.touches(keypoints[i], params_.scale_factor, params_.mask_reach))
+        continue;
+      keep[i] = 0;
+      if (sets_[i] == PointSet::kP) {
+        p_rejected++;
+      } else {  // a Q point that passed the flow test
+        stats_.q--;
+        stats_.q_to_p--;
+      }
+      sets_[i] = PointSet::kZ;
+      stats_.z++;
+      stats_.motion_rejected++;
+    }
+    if (tracked) continue;
+    TrackedBox box;
+    box.detection = detection;
+    box.depth = mask.depth;
+    objects_.push_back(box);
+    masks_.push_back(std::move(mask));
+  }
+  stats_.mask_ms += ms_since(t0);
+  return p_rejected;
 }
 
 }  // namespace depot::slam

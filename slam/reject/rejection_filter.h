@@ -18,7 +18,11 @@
 //            (Z or Q whole). Q then as in full. A dynamic object seen still
 //            (a seated person: few of its keypoints fail the flow test) has
 //            its keypoints decided one by one like Q's; a moving one loses
-//            them all (still_object_max_moving).
+//            them all (still_object_max_moving). With motion.enabled (and
+//            the camera-motion flow test), keypoints failing that test are
+//            grouped into objects no detector named (motion_objects.h):
+//            each is segmented from depth, its keypoints rejected, and it
+//            joins the next frame's boxes as a dynamic object.
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,6 +34,7 @@
 #include "slam/reject/box_tracker.h"
 #include "slam/reject/ego_motion_flow.h"
 #include "slam/reject/flow_test.h"
+#include "slam/reject/motion_objects.h"
 #include "slam/reject/object_mask.h"
 #include "slam/reject/optical_flow.h"
 #include "slam/reject/point_sets.h"
@@ -86,6 +91,8 @@ struct RejectionParams {
   // rule alone (every keypoint on a dynamic object goes to Z).
   float still_object_max_moving = 0.3f;
   int still_object_min_points = 5;
+  // masked, with ego_motion_flow: movers found without a detection.
+  MotionObjectParams motion;
 };
 // depth | segmentation | both; Error("<where>: ...") otherwise.
 RejectionParams::PersonMask parse_person_mask(const std::string& name,
@@ -103,12 +110,14 @@ struct RejectionStats {
   double wait_ms = 0;    // how long tracking waited for the detector
   double detect_ms = 0;  // the detector's own time (hidden by the thread when it runs ahead)
   double flow_ms = 0;
-  double filter_ms = 0;   // the whole rejection stage after detection
-  int carried = 0;        // masked: boxes carried by the box tracker (missed detections)
-  int masks = 0;          // masked: objects segmented from depth
-  double mask_ms = 0;     // masked: box tracking and depth segmentation
-  double segment_ms = 0;  // masked: the person segmenter (in the detection thread)
-  int still_objects = 0;  // masked: dynamic objects seen still (keypoints decided by flow)
+  double filter_ms = 0;     // the whole rejection stage after detection
+  int carried = 0;          // masked: boxes carried by the box tracker (missed detections)
+  int masks = 0;            // masked: objects segmented from depth
+  double mask_ms = 0;       // masked: box tracking and depth segmentation
+  double segment_ms = 0;    // masked: the person segmenter (in the detection thread)
+  int still_objects = 0;    // masked: dynamic objects seen still (keypoints decided by flow)
+  int motion_objects = 0;   // masked: objects found by their motion alone this frame
+  int motion_rejected = 0;  // masked: keypoints rejected on them (not on a detector's object)
 };
 
 class RejectionFilter : public KeypointFilter {
@@ -153,6 +162,15 @@ class RejectionFilter : public KeypointFilter {
                    std::vector<uint8_t>& keep);
   std::vector<PointSet> masked_sets(const FrameImages& images,
                                     const std::vector<cv::KeyPoint>& keypoints);
+  // A tracked object's motion class: a motion-found one is dynamic.
+  MotionClass object_class(const TrackedBox& object) const;
+  // masked with motion.enabled: groups the keypoints that failed the
+  // camera-motion test (`moving`, -1 = not tested) into objects, rejects the
+  // keypoints on them and keeps them for the next frame. Returns how many
+  // of those were P points.
+  int reject_motion_objects(const FrameImages& images, const std::vector<cv::KeyPoint>& keypoints,
+                            const std::vector<float>& depth, const std::vector<int8_t>& moving,
+                            std::vector<uint8_t>& keep);
   // Z rejected, Q (and P with test_static_points) decided by the flow test.
   void decide_sets(const FrameImages& images, const std::vector<cv::KeyPoint>& keypoints,
                    const std::vector<float>& depth, std::vector<uint8_t>& keep);
@@ -175,6 +193,11 @@ class RejectionFilter : public KeypointFilter {
   // masked, with the still-object test: the dynamic object (index into
   // objects_) each keypoint lies on, -1 for none; empty when not tested.
   std::vector<int> dynamic_object_;
+  // masked: keypoints on an object a detector found (not motion-found).
+  std::vector<uint8_t> on_detected_object_;
+  // masked: the objects found by motion in the last frame, handed to the
+  // box tracker with the next frame's detections.
+  std::vector<Detection> motion_detections_;
 };
 
 }  // namespace depot::slam

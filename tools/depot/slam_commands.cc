@@ -242,7 +242,16 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
     std::printf("input %g Hz, run-ahead %s: %zu frames handled after their turn\n",
                 a.options.rate_hz, a.options.run_ahead ? "on" : "off", s.late_frames);
   }
-  if (s.scored && a.options.mode != "orb") print_rejection_vs_truth(s.score);
+  if (s.scored && a.options.mode != "orb") {
+    print_rejection_vs_truth(s.score);
+    const eval::RejectionScore& d = s.score_with_depth;
+    const long moving = s.score.true_positive + s.score.false_negative;
+    const long moving_d = d.true_positive + d.false_negative;
+    std::printf(
+        "  keypoints with depth (can start map points; %ld of %ld moving ones): precision %.3f "
+        "recall %.3f with boundary points left out\n",
+        moving_d, moving, d.precision_without_boundary(), d.recall());
+  }
 }
 
 }  // namespace
@@ -295,7 +304,8 @@ void add_rejection_options(CLI::App* cmd, runner::RunOptions& o) {
                                           "--rejection-set " + t);
       },
       "Change a rejection setting as a sweep's rejection.KEY, e.g. --rejection-set "
-      "mask.extent=0.8 (repeatable; keys in tools/runner/slam_runner.h)");
+      "mask.extent=0.8, or motion=true for masked to reject movers no detector names "
+      "(repeatable; keys in tools/runner/slam_runner.h)");
   cmd->add_option_function<std::string>(
          "--mapping", [&o](const std::string& v) { o.sync = v == "sync"; },
          "Local mapping: threaded (its own thread, as ORB-SLAM2; faster, not reproducible) or "

@@ -134,6 +134,14 @@ void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const s
       o.rejection.background_depth_margin = m;
     } else if (setting.key == "ego_flow") {
       o.rejection.ego_motion_flow = value.as<bool>();
+    } else if (setting.key == "motion") {
+      o.rejection.motion.enabled = value.as<bool>();
+    } else if (setting.key == "motion.first_sight") {
+      o.rejection.motion.reject_on_first_sight = value.as<bool>();
+    } else if (setting.key == "motion.min_seeds") {
+      const int n = value.as<int>();
+      if (n < 1 || n > 10000) fail(where, "motion.min_seeds must be in [1, 10000] keypoints");
+      o.rejection.motion.min_seeds = n;
     } else if (setting.key == "test_static") {
       o.rejection.test_static_points = value.as<bool>();
     } else if (setting.key == "person_mask") {
@@ -161,16 +169,24 @@ void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const s
         const char* name;
         float* field;
         float lo, hi;
-      } keys[] = {{"mask.grow", &o.rejection.mask.grow, 0.0f, 2.0f},
-                  {"mask.extent", &o.rejection.mask.extent_m, 0.01f, 10.0f},
-                  {"mask.edge_step", &o.rejection.mask.edge_step_m, 0.0f, 10.0f},
-                  {"mask.edge_step_per_m", &o.rejection.mask.edge_step_per_m, 0.0f, 1.0f},
-                  {"mask.reach", &o.rejection.mask_reach, 0.0f, 3.0f},
-                  {"mask.top_min_share", &o.rejection.mask.top_min_share, 0.0f, 1.0f},
-                  {"mask.max_spill", &o.rejection.mask.max_spill, 0.0f, 1.0f},
-                  {"mask.max_occluder_gap", &o.rejection.mask.max_occluder_gap_m, 0.0f, 100.0f},
-                  {"tracking.min_iou", &o.rejection.tracking.min_iou, 0.0f, 1.0f},
-                  {"still.max_moving", &o.rejection.still_object_max_moving, 0.0f, 1.0f}};
+      } keys[] = {
+          {"mask.grow", &o.rejection.mask.grow, 0.0f, 2.0f},
+          {"mask.extent", &o.rejection.mask.extent_m, 0.01f, 10.0f},
+          {"mask.edge_step", &o.rejection.mask.edge_step_m, 0.0f, 10.0f},
+          {"mask.edge_step_per_m", &o.rejection.mask.edge_step_per_m, 0.0f, 1.0f},
+          {"mask.reach", &o.rejection.mask_reach, 0.0f, 3.0f},
+          {"mask.top_min_share", &o.rejection.mask.top_min_share, 0.0f, 1.0f},
+          {"mask.max_spill", &o.rejection.mask.max_spill, 0.0f, 1.0f},
+          {"mask.max_occluder_gap", &o.rejection.mask.max_occluder_gap_m, 0.0f, 100.0f},
+          {"tracking.min_iou", &o.rejection.tracking.min_iou, 0.0f, 1.0f},
+          {"still.max_moving", &o.rejection.still_object_max_moving, 0.0f, 1.0f},
+          {"motion.link_px", &o.rejection.motion.link_px, 1.0f, 640.0f},
+          {"motion.link_depth", &o.rejection.motion.link_depth_m, 0.0f, 10.0f},
+          {"motion.link_depth_per_m", &o.rejection.motion.link_depth_per_m, 0.0f, 1.0f},
+          {"motion.min_moving_share", &o.rejection.motion.min_moving_share, 0.0f, 1.0f},
+          {"motion.grow", &o.rejection.motion.grow, 0.0f, 5.0f},
+          {"motion.max_frame_moving_share", &o.rejection.motion.max_frame_moving_share, 0.0f, 1.0f},
+          {"ego.threshold", &o.rejection.ego.threshold_px, 0.1f, 100.0f}};
       for (const Key& k : keys) {
         if (setting.key != k.name) continue;
         const float v = value.as<float>();
@@ -181,7 +197,9 @@ void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const s
         return;
       }
       std::string known =
-          "background_margin, ego_flow, test_static, person_mask, tracking.max_missed, "
+          "background_margin, ego_flow, test_static, motion, motion.first_sight, "
+          "motion.min_seeds, person_mask, "
+          "tracking.max_missed, "
           "tracking.min_hits, still.min_points, "
           "mask.plane, mask.stride";
       for (const Key& k : keys) known += std::string(", ") + k.name;
@@ -285,7 +303,8 @@ RunSummary run_sequence(const RunOptions& o) {
         << "frame,timestamp,state,keypoints,kept,Z,Q,Q_to_P,P,detections,flow_u,flow_v,z,wait_ms,"
            "detect_ms,flow_ms,"
            "filter_ms,total_ms,true_positive,false_positive,false_negative,false_positive_z,"
-           "false_positive_q,method,matches,inliers,local_points,new_keyframe\n";
+           "false_positive_q,method,matches,inliers,local_points,new_keyframe,motion_objects,"
+           "motion_rejected\n";
   }
   std::optional<StagedDirectory> overlays;
   std::optional<std::ofstream> overlay_index;
@@ -380,6 +399,16 @@ RunSummary run_sequence(const RunOptions& o) {
         (filter->last_sets()[k] == slam::PointSet::kZ ? fp_z : fp_q)++;
       }
       summary.score.add(frame_score);
+      // Keypoints with depth on their own: only they start map points.
+      const std::vector<float> kp_depth = slam::keypoint_depths(depth, filter->last_keypoints());
+      std::vector<uint8_t> keep_d, moving_d, boundary_d;
+      for (size_t k = 0; k < kp_depth.size(); ++k) {
+        if (!(kp_depth[k] > 0)) continue;
+        keep_d.push_back(filter->last_keep()[k]);
+        moving_d.push_back(labels.on_moving[k]);
+        boundary_d.push_back(labels.boundary[k]);
+      }
+      summary.score_with_depth.add(keep_d, moving_d, boundary_d);
     }
     if (overlays && i % o.overlays_every == 0) {
       char name[32];
@@ -396,14 +425,15 @@ RunSummary run_sequence(const RunOptions& o) {
       char line[640];
       std::snprintf(line, sizeof(line),
                     "%zu,%.6f,%s,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%.2f,%.2f,%ld,%"
-                    "ld,%ld,%ld,%ld,%s,%d,%d,%d,%d\n",
+                    "ld,%ld,%ld,%ld,%s,%d,%d,%d,%d,%d,%d\n",
                     i, t, slam::tracking_state_name(r.state), rs.total, rs.kept, rs.z, rs.q,
                     rs.q_to_p, rs.p, rs.detections, rs.mean_flow.x, rs.mean_flow.y, rs.z_threshold,
                     rs.wait_ms, rs.detect_ms, rs.flow_ms, rs.filter_ms, r.timing.total_ms,
                     frame_score.true_positive, frame_score.false_positive,
                     frame_score.false_negative, fp_z, fp_q,
                     slam::tracking_method_name(r.stats.method), r.stats.matches, r.stats.inliers,
-                    r.stats.local_points, r.stats.new_keyframe ? 1 : 0);
+                    r.stats.local_points, r.stats.new_keyframe ? 1 : 0, rs.motion_objects,
+                    rs.motion_rejected);
       stats->stream() << line;
     }
     if (o.on_frame) o.on_frame(i, r, filter, system);

@@ -88,7 +88,11 @@ struct RunOptions {
 // tracking.max_missed (frames), tracking.min_hits (detections before a
 // missed box is carried), tracking.min_iou, still.max_moving (the share of
 // a dynamic object's keypoints failing the flow test below which it is
-// still; 0 = off), still.min_points. Throws
+// still; 0 = off), still.min_points, and for masked's movers without a
+// detection (slam/reject/motion_objects.h) motion (bool), motion.first_sight
+// (bool), motion.min_seeds, motion.link_px, motion.link_depth (m),
+// motion.link_depth_per_m, motion.min_moving_share, motion.grow,
+// motion.max_frame_moving_share, and ego.threshold (px at 640). Throws
 // Error("<where>: ...") for an unknown key or a bad value.
 void apply_rejection_setting(RunOptions& options, const YamlOverride& setting,
                              const std::string& where);
@@ -127,6 +131,9 @@ struct RunSummary {
   std::vector<StampedPose> keyframes_trajectory;
   bool scored = false;
   eval::RejectionScore score;  // with the boundary class (MotionTruth)
+  // The same over the keypoints with depth, the ones that can start map
+  // points (RGB-D ORB-SLAM2 makes none from a keypoint without depth).
+  eval::RejectionScore score_with_depth;
   std::string settings_source;
   std::string detector_name;
 
