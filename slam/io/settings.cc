@@ -74,6 +74,7 @@ SlamSettings load_settings(const std::string& path, const SlamSettings& defaults
       read<int>(tr, "max_frames_between_keyframes", s.tracker.max_frames_between_kf, path, 1, 1000);
   s.tracker.min_init_points =
       read<int>(tr, "min_init_points", s.tracker.min_init_points, path, 10, 10000);
+  s.tracker.weak_inliers = read<int>(tr, "weak_inliers", s.tracker.weak_inliers, path, 0, 10000);
   if (tr && tr["atlas"]) {
     try {
       s.tracker.atlas = tr["atlas"].as<bool>();

@@ -494,8 +494,9 @@ bool Tracker::need_keyframe(const Frame& frame, int inliers) const {
   const double ref_ratio = n_kfs < 2 ? 0.4 : 0.75;
   const bool c1a = frame.id >= last_keyframe_frame_ + params_.max_frames_between_kf;
   const bool c1b = frame.id >= last_keyframe_frame_ + params_.min_frames_between_kf && idle;
-  const bool c1c = inliers < ref_matches * 0.25 || need_close;
-  const bool c2 = (inliers < ref_matches * ref_ratio || need_close) && inliers > 15;
+  const bool weak = inliers < params_.weak_inliers;
+  const bool c1c = inliers < ref_matches * 0.25 || need_close || weak;
+  const bool c2 = (inliers < ref_matches * ref_ratio || need_close || weak) && inliers > 15;
   if (!((c1a || c1b || c1c) && c2)) return false;
   if (idle) return true;
   mapper_.interrupt_ba();

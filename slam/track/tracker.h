@@ -32,6 +32,13 @@ struct TrackerParams {
   int min_init_points = 300;
   int max_frames_between_kf = 30;  // ~1 s at 30 Hz
   int min_frames_between_kf = 0;
+  // A frame tracked with fewer inliers than this takes a keyframe (once
+  // min_frames_between_kf have passed), whatever the reference counts say:
+  // under rejection a young map's points are seen by too few keyframes for
+  // ORB-SLAM2's ratio to fire, and too few keypoints have depth for its
+  // close-point rule, so the map went on thinning until it was lost. The
+  // keyframe adds this frame's depth points. 0 = ORB-SLAM2's rules only.
+  int weak_inliers = 80;
   int local_map_min_inliers = 30;
   int relocalisation_min_inliers = 50;
   int relocalisation_candidates = 20;  // place-recognition candidates tried, best first

@@ -300,6 +300,39 @@ class GrownMapTrackerTest : public TrackerTest {
   static void TearDownTestSuite() { params_for_next_ = without_atlas(); }
 };
 
+// The weak-tracking rule alone: ORB-SLAM2's rules (weak_inliers 0) take no
+// keyframe while the camera turns slowly over a well-seen map; with the bar
+// above every frame's inliers, each tracked frame takes one.
+class OrbSlam2KeyframesTest : public TrackerTest {
+ public:
+  static void SetUpTestSuite() { params_for_next_.weak_inliers = 0; }
+  static void TearDownTestSuite() { params_for_next_ = without_atlas(); }
+};
+class WeakTrackingTest : public TrackerTest {
+ public:
+  static void SetUpTestSuite() { params_for_next_.weak_inliers = 100000; }
+  static void TearDownTestSuite() { params_for_next_ = without_atlas(); }
+};
+
+TEST_F(OrbSlam2KeyframesTest, AWellTrackedFrameTakesNoKeyframe) {
+  track_view(0);
+  for (double yaw : {0.5, 1.0}) {
+    const TrackingStats stats = track_view(yaw);
+    EXPECT_FALSE(stats.new_keyframe) << "yaw " << yaw << ": " << stats.inliers << " inliers";
+  }
+  EXPECT_EQ(map_.n_keyframes(), 1u);
+}
+
+TEST_F(WeakTrackingTest, AFrameBelowTheInlierBarTakesAKeyframe) {
+  track_view(0);
+  for (double yaw : {0.5, 1.0}) {
+    const TrackingStats stats = track_view(yaw);
+    EXPECT_EQ(tracker_.state(), TrackingState::kOk);
+    EXPECT_TRUE(stats.new_keyframe) << "yaw " << yaw << ": " << stats.inliers << " inliers";
+  }
+  EXPECT_EQ(map_.n_keyframes(), 3u);
+}
+
 TEST_F(GrownMapTrackerTest, AGrownMapIsNeverResetForBeingLost) {
   track_view(0);
   track_view(1);
