@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 
 #include "common/config_path.h"
 #include "common/error.h"
@@ -13,6 +14,13 @@
 
 namespace depot::slam {
 namespace {
+
+// A bound as a user wrote it: 10000, 0.5 (not 10000.000000).
+std::string shortest(double x) {
+  std::ostringstream text;
+  text << x;
+  return text.str();
+}
 
 template <typename T>
 T read(const YAML::Node& n, const char* key, T fallback, const std::string& path, double lo,
@@ -28,8 +36,7 @@ T read(const YAML::Node& n, const char* key, T fallback, const std::string& path
   const double d = static_cast<double>(v);
   if (!std::isfinite(d) || d < lo || d > hi)
     fail(path + ":" + std::to_string(n[key].Mark().line + 1),
-         std::string("'") + key + "' out of range [" + std::to_string(lo) + ", " +
-             std::to_string(hi) + "]");
+         std::string("'") + key + "' out of range [" + shortest(lo) + ", " + shortest(hi) + "]");
   return v;
 }
 

@@ -74,7 +74,10 @@ std::vector<TrackedBox> BoxTracker::update(const std::vector<Detection>& detecti
   for (size_t t = 0; t < tracks_.size(); ++t) {
     Track& track = tracks_[t];
     if (t < old_tracks && !track_used[t]) {
-      if (++track.missed > params_.max_missed) continue;
+      const int limit =
+          track.seen ? std::max(params_.max_missed, params_.max_missed_seen) : params_.max_missed;
+      track.seen = false;
+      if (++track.missed > limit) continue;
       // A box seen once may be a false detection: kept to match, not carried.
       if (track.detected >= params_.min_hits)
         out.push_back({track.detection, track.id, track.missed, track.depth});
@@ -87,7 +90,12 @@ std::vector<TrackedBox> BoxTracker::update(const std::vector<Detection>& detecti
 
 void BoxTracker::correct(int track_id, const cv::Rect2f& box) {
   for (Track& t : tracks_)
-    if (t.id == track_id && t.missed > 0) t.detection.box = box;
+    if (t.id == track_id && t.missed > 0) {
+      // Found where it was carried: most of the measured box overlaps the
+      // prediction (what is found far off may be something else).
+      t.seen = iou(box, t.detection.box) >= params_.seen_min_iou;
+      t.detection.box = box;
+    }
 }
 
 void BoxTracker::set_depth(int track_id, float depth) {

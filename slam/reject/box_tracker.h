@@ -16,7 +16,12 @@
 namespace depot::slam {
 
 struct BoxTrackerParams {
-  int max_missed = 5;               // frames a track lives without a detection
+  int max_missed = 5;  // frames a track lives without a detection
+  // ... and while the caller finds its object where the track carries it
+  // (correct() on every carried frame), up to this many (a person the
+  // detector misses for longer, still found at its depth).
+  int max_missed_seen = 5;
+  float seen_min_iou = 0.5f;        // correct()'s box overlaps the carried one this much
   int min_hits = 2;                 // detections before a missed track's box is carried
   float min_iou = 0.2f;             // a detection continues a track from this overlap
   float velocity_smoothing = 0.5f;  // weight of the newest box motion in the velocity
@@ -38,7 +43,9 @@ class BoxTracker {
   // of each track the detector missed (missed = 1..max_missed).
   std::vector<TrackedBox> update(const std::vector<Detection>& detections);
   // Replaces a carried track's box (the one update() just returned, same
-  // track_id) by a measured one; its velocity is kept.
+  // track_id) by a measured one; its velocity is kept, and the track counts
+  // as seen this frame (max_missed_seen) when the two overlap by
+  // seen_min_iou.
   void correct(int track_id, const cv::Rect2f& box);
   // Records the object's depth (m) for the track, returned with it from the
   // next update() (a carried box's object is looked for at that depth).
@@ -56,6 +63,7 @@ class BoxTracker {
     int missed = 0;
     int detected = 0;  // detections so far
     float depth = 0;
+    bool seen = false;  // correct() was called on its last carried frame
   };
   BoxTrackerParams params_;
   std::vector<Track> tracks_;

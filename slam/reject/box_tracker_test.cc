@@ -39,6 +39,33 @@ TEST(BoxTracker, BridgesAMissForKFramesThenDrops) {
   EXPECT_EQ(tracker.tracks(), 0u);
 }
 
+// A carried box whose object the caller keeps finding (correct()) lives up
+// to max_missed_seen frames; one frame without it and max_missed holds again.
+TEST(BoxTracker, ACarriedBoxStillSeenLivesLonger) {
+  BoxTrackerParams params;
+  params.max_missed = 2;
+  params.max_missed_seen = 6;
+  BoxTracker tracker(params);
+  tracker.update({person_at(100)});
+  const int id = tracker.update({person_at(104)})[0].track_id;
+  for (int miss = 1; miss <= 6; ++miss) {
+    const auto boxes = tracker.update({});
+    ASSERT_EQ(boxes.size(), 1u) << "miss " << miss;
+    EXPECT_EQ(boxes[0].track_id, id);
+    EXPECT_EQ(boxes[0].missed, miss);
+    tracker.correct(id, boxes[0].detection.box);  // its object found where carried
+  }
+  EXPECT_TRUE(tracker.update({}).empty()) << "past max_missed_seen";
+
+  // Found while carried, then not: dropped at max_missed.
+  BoxTracker again(params);
+  again.update({person_at(100)});
+  const int other = again.update({person_at(104)})[0].track_id;
+  again.correct(other, again.update({})[0].detection.box);  // miss 1, seen
+  ASSERT_EQ(again.update({}).size(), 1u);                   // miss 2, not seen
+  EXPECT_TRUE(again.update({}).empty()) << "miss 3 > max_missed without its object";
+}
+
 TEST(BoxTracker, RedetectionContinuesTheTrack) {
   BoxTracker tracker;
   const int id = tracker.update({person_at(100)})[0].track_id;

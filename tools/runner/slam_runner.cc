@@ -150,6 +150,10 @@ void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const s
       const int n = value.as<int>();
       if (n < 0 || n > 1000) fail(where, "tracking.max_missed must be in [0, 1000] frames");
       o.rejection.tracking.max_missed = n;
+    } else if (setting.key == "tracking.max_missed_seen") {
+      const int n = value.as<int>();
+      if (n < 0 || n > 1000) fail(where, "tracking.max_missed_seen must be in [0, 1000] frames");
+      o.rejection.tracking.max_missed_seen = n;
     } else if (setting.key == "tracking.min_hits") {
       const int n = value.as<int>();
       if (n < 1 || n > 1000) fail(where, "tracking.min_hits must be in [1, 1000] detections");
@@ -199,7 +203,7 @@ void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const s
       std::string known =
           "background_margin, ego_flow, test_static, motion, motion.first_sight, "
           "motion.min_seeds, person_mask, "
-          "tracking.max_missed, "
+          "tracking.max_missed, tracking.max_missed_seen, "
           "tracking.min_hits, still.min_points, "
           "mask.plane, mask.stride";
       for (const Key& k : keys) known += std::string(", ") + k.name;

@@ -85,7 +85,8 @@ struct RunOptions {
 // mask.plane (bool: support-plane removal), mask.top_min_share (0 = no
 // occluder test), mask.max_spill (the occluded object's spill past its box),
 // mask.max_occluder_gap (m, how far behind its occluder the object may be),
-// tracking.max_missed (frames), tracking.min_hits (detections before a
+// tracking.max_missed (frames), tracking.max_missed_seen (frames, while the
+// carried object is still found at its depth), tracking.min_hits (detections before a
 // missed box is carried), tracking.min_iou, still.max_moving (the share of
 // a dynamic object's keypoints failing the flow test below which it is
 // still; 0 = off), still.min_points, and for masked's movers without a
