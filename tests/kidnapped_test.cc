@@ -6,13 +6,13 @@
 // (but for that second) must have a pose, and the ATE over all frames with a
 // pose, each map aligned on its own, must stay within 2 cm.
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "slam/io/frame_states_file.h"
 #include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
 
@@ -23,34 +23,14 @@ constexpr int kFrames = 2095;
 constexpr int kCoverFirst = 1530, kCoverLast = 1634;  // t in [51.0, 54.5) s at 30 Hz
 constexpr int kSecond = 30;
 
-struct FrameState {
-  std::string state;
-  int map = -1;  // -1: no pose
-};
-
-std::vector<FrameState> read_states(const std::string& path) {
-  std::vector<FrameState> states;
-  std::ifstream in(path);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream row(line);
-    double timestamp = 0;
-    FrameState s;
-    row >> timestamp >> s.state;
-    if (!(row >> s.map)) s.map = -1;
-    states.push_back(s);
-  }
-  return states;
-}
-
 void check_mode(const std::string& dataset, const std::string& mode) {
   SCOPED_TRACE(mode);
   const std::string run = temp_path("kidnapped") + ".txt";
-  const DepotResult slam =
+  const DepotResult tracked =
       depot("slam run " + dataset + " -o " + run + " --mode " + mode + " --mapping sync -q");
-  ASSERT_EQ(slam.code, 0) << slam.output;
-  const std::vector<FrameState> states = read_states(run.substr(0, run.size() - 4) + ".states.txt");
+  ASSERT_EQ(tracked.code, 0) << tracked.output;
+  const std::vector<slam::StampedFrameState> states =
+      slam::read_frame_states(slam::frame_states_path(run));
   ASSERT_EQ(states.size(), static_cast<size_t>(kFrames));
 
   int back = -1;  // the first frame after the cover in the first map (0)

@@ -21,10 +21,8 @@ std::vector<MotionObject> find_motion_objects(const std::vector<TestedKeypoint>&
                                               cv::Size image, const MotionObjectParams& params) {
   std::vector<int> seeds;
   for (size_t i = 0; i < tested.size(); ++i)
-    if (tested[i].moving && tested[i].depth > 0) seeds.push_back(static_cast<int>(i));
-  int with_depth = 0;
-  for (const TestedKeypoint& k : tested) with_depth += k.depth > 0;
-  if (static_cast<float>(seeds.size()) > params.max_frame_moving_share * with_depth) return {};
+    if (tested[i].moving) seeds.push_back(static_cast<int>(i));
+  if (static_cast<float>(seeds.size()) > params.max_frame_moving_share * tested.size()) return {};
   const float link_px = params.link_px * static_cast<float>(image.width) / 640.0f;
 
   // Single linkage over the failing keypoints.
@@ -62,7 +60,7 @@ std::vector<MotionObject> find_motion_objects(const std::vector<TestedKeypoint>&
     const float z_lo = z0 - depth_tolerance(z0, params), z_hi = z1 + depth_tolerance(z1, params);
     int inside = 0, moving = 0;
     for (const TestedKeypoint& k : tested) {
-      if (k.depth <= 0 || k.depth < z_lo || k.depth > z_hi) continue;
+      if (k.depth < z_lo || k.depth > z_hi) continue;
       if (k.pixel.x < x0 || k.pixel.x > x1 || k.pixel.y < y0 || k.pixel.y > y1) continue;
       inside++;
       moving += k.moving;

@@ -11,6 +11,11 @@
 namespace depot::slam {
 namespace {
 
+// An object made from motion-found keypoints, not a detector's box.
+bool found_by_motion(const TrackedBox& object) {
+  return object.detection.class_name == kMotionClass;
+}
+
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -227,8 +232,7 @@ std::vector<PointSet> RejectionFilter::masked_sets(const FrameImages& images,
   // still or gone, and is not carried on.
   objects_.erase(std::remove_if(objects_.begin(), objects_.end(),
                                 [](const TrackedBox& object) {
-                                  return object.missed > 0 &&
-                                         object.detection.class_name == kMotionClass;
+                                  return object.missed > 0 && found_by_motion(object);
                                 }),
                  objects_.end());
   masks_.clear();
@@ -271,7 +275,7 @@ std::vector<PointSet> RejectionFilter::masked_sets(const FrameImages& images,
                                  ? mask.touches(kp, params_.scale_factor, params_.mask_reach)
                                  : objects_[k].detection.box.contains(kp.pt);
       if (!on_object) continue;
-      if (objects_[k].detection.class_name != kMotionClass) on_detected_object_[i] = 1;
+      if (!found_by_motion(objects_[k])) on_detected_object_[i] = 1;
       sets[i] = std::max(sets[i], object_set);
       if (object_set == PointSet::kZ) dynamic_object[i] = static_cast<int>(k);
     }
@@ -356,9 +360,9 @@ void RejectionFilter::decide_sets(const FrameImages& images,
       const size_t kp = j < n_ref ? reference[j] : q_index[j - n_ref];
       // Q (and P with test_p) by the camera-motion test; for movers, P and
       // the keypoints of motion-found objects (so they are found again).
-      const bool on_motion_object =
-          j >= n_ref && !dynamic_object_.empty() && dynamic_object_[kp] >= 0 &&
-          objects_[dynamic_object_[kp]].detection.class_name == kMotionClass;
+      const bool on_motion_object = j >= n_ref && !dynamic_object_.empty() &&
+                                    dynamic_object_[kp] >= 0 &&
+                                    found_by_motion(objects_[dynamic_object_[kp]]);
       const bool by_ego = ego && (j >= n_ref || test_p);
       const bool for_movers = find_movers && depth[kp] > 0 && (j < n_ref || on_motion_object);
       if (!by_ego && !for_movers) continue;
@@ -410,7 +414,7 @@ void RejectionFilter::decide_sets(const FrameImages& images,
       // Too few tracked keypoints to tell: a detected object of a dynamic
       // class moves, a motion-found one (only motion made it an object) not.
       object_moves[o] = tracked[o] < params_.still_object_min_points
-                            ? objects_[o].detection.class_name != kMotionClass
+                            ? !found_by_motion(objects_[o])
                             : moving[o] >= params_.still_object_max_moving * tracked[o];
       stats_.still_objects += !object_moves[o];  // tracked points: a dynamic object
     }
@@ -448,7 +452,7 @@ void RejectionFilter::decide_sets(const FrameImages& images,
 }
 
 MotionClass RejectionFilter::object_class(const TrackedBox& object) const {
-  if (object.detection.class_name == kMotionClass) return MotionClass::kDynamic;
+  if (found_by_motion(object)) return MotionClass::kDynamic;
   return classes_.classify(object.detection.class_name);
 }
 
@@ -463,7 +467,7 @@ int RejectionFilter::reject_motion_objects(const FrameImages& images,
   // left out); the rest is evidence.
   std::vector<cv::Rect> detected_regions;
   for (const TrackedBox& object : objects_)
-    if (object.detection.class_name != kMotionClass)
+    if (!found_by_motion(object))
       detected_regions.push_back(
           search_region(object.detection.box, images.gray.size(), params_.mask.grow));
   auto near_detected = [&](const cv::Point2f& p) {
@@ -496,7 +500,7 @@ int RejectionFilter::reject_motion_objects(const FrameImages& images,
     // single frame's group is often a slip of the camera-motion fit).
     bool tracked = false;
     for (size_t k = 0; k < tracked_objects && !tracked; ++k)
-      tracked = objects_[k].detection.class_name == kMotionClass &&
+      tracked = found_by_motion(objects_[k]) &&
                 iou(objects_[k].detection.box, bounds) >= params_.tracking.min_iou;
     if (!tracked && !params_.motion.reject_on_first_sight) continue;
     for (size_t i = 0; i < keypoints.size(); ++i) {

@@ -89,10 +89,9 @@ char set_letter(slam::PointSet set) {
 // moving object or on its boundary (MotionTruth's rule) and the instance id
 // there (objects.json); empty truth columns on real data.
 void write_keypoint_rows(std::ostream& out, size_t frame, double timestamp,
-                         const slam::RejectionFilter& filter, const cv::Mat& depth,
+                         const slam::RejectionFilter& filter, const std::vector<float>& depths,
                          const eval::MotionTruth::KeypointTruth* truth) {
   const auto& kps = filter.last_keypoints();
-  const std::vector<float> depths = slam::keypoint_depths(depth, kps);
   eval::WrittenKeypoint row;
   row.frame = frame;
   row.timestamp = timestamp;
@@ -138,37 +137,34 @@ void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const s
       o.rejection.motion.enabled = value.as<bool>();
     } else if (setting.key == "motion.first_sight") {
       o.rejection.motion.reject_on_first_sight = value.as<bool>();
-    } else if (setting.key == "motion.min_seeds") {
-      const int n = value.as<int>();
-      if (n < 1 || n > 10000) fail(where, "motion.min_seeds must be in [1, 10000] keypoints");
-      o.rejection.motion.min_seeds = n;
     } else if (setting.key == "test_static") {
       o.rejection.test_static_points = value.as<bool>();
     } else if (setting.key == "person_mask") {
       o.rejection.person_mask = slam::parse_person_mask(setting.value, where);
-    } else if (setting.key == "tracking.max_missed") {
-      const int n = value.as<int>();
-      if (n < 0 || n > 1000) fail(where, "tracking.max_missed must be in [0, 1000] frames");
-      o.rejection.tracking.max_missed = n;
-    } else if (setting.key == "tracking.max_missed_seen") {
-      const int n = value.as<int>();
-      if (n < 0 || n > 1000) fail(where, "tracking.max_missed_seen must be in [0, 1000] frames");
-      o.rejection.tracking.max_missed_seen = n;
-    } else if (setting.key == "tracking.min_hits") {
-      const int n = value.as<int>();
-      if (n < 1 || n > 1000) fail(where, "tracking.min_hits must be in [1, 1000] detections");
-      o.rejection.tracking.min_hits = n;
-    } else if (setting.key == "still.min_points") {
-      const int n = value.as<int>();
-      if (n < 1 || n > 10000) fail(where, "still.min_points must be in [1, 10000] keypoints");
-      o.rejection.still_object_min_points = n;
     } else if (setting.key == "mask.plane") {
       o.rejection.mask.remove_plane = value.as<bool>();
-    } else if (setting.key == "mask.stride") {
-      const int n = value.as<int>();
-      if (n < 1 || n > 16) fail(where, "mask.stride must be in [1, 16] px");
-      o.rejection.mask.stride = n;
     } else {
+      struct IntKey {
+        const char* name;
+        int* field;
+        int lo, hi;
+        const char* unit;
+      } int_keys[] = {
+          {"motion.min_seeds", &o.rejection.motion.min_seeds, 1, 10000, "keypoints"},
+          {"tracking.max_missed", &o.rejection.tracking.max_missed, 0, 1000, "frames"},
+          {"tracking.max_missed_seen", &o.rejection.tracking.max_missed_seen, 0, 1000, "frames"},
+          {"tracking.min_hits", &o.rejection.tracking.min_hits, 1, 1000, "detections"},
+          {"still.min_points", &o.rejection.still_object_min_points, 1, 10000, "keypoints"},
+          {"mask.stride", &o.rejection.mask.stride, 1, 16, "px"}};
+      for (const IntKey& k : int_keys) {
+        if (setting.key != k.name) continue;
+        const int n = value.as<int>();
+        if (n < k.lo || n > k.hi)
+          fail(where, std::string(k.name) + " must be in [" + std::to_string(k.lo) + ", " +
+                          std::to_string(k.hi) + "] " + k.unit);
+        *k.field = n;
+        return;
+      }
       struct Key {
         const char* name;
         float* field;
@@ -201,11 +197,9 @@ void apply_rejection_setting(RunOptions& o, const YamlOverride& setting, const s
         return;
       }
       std::string known =
-          "background_margin, ego_flow, test_static, motion, motion.first_sight, "
-          "motion.min_seeds, person_mask, "
-          "tracking.max_missed, tracking.max_missed_seen, "
-          "tracking.min_hits, still.min_points, "
-          "mask.plane, mask.stride";
+          "background_margin, ego_flow, test_static, motion, motion.first_sight, person_mask, "
+          "mask.plane";
+      for (const IntKey& k : int_keys) known += std::string(", ") + k.name;
       for (const Key& k : keys) known += std::string(", ") + k.name;
       fail(where, "unknown rejection setting '" + setting.key + "' (expected " + known + ")");
     }
@@ -390,6 +384,11 @@ RunSummary run_sequence(const RunOptions& o) {
     } else {
       rs.total = rs.kept = rs.p = r.keypoints;
     }
+    // The keypoints' depths, for the score over keypoints with depth and
+    // the keypoint rows.
+    std::vector<float> kp_depth;
+    if (filter && (truth || keypoint_rows))
+      kp_depth = slam::keypoint_depths(depth, filter->last_keypoints());
     eval::RejectionScore frame_score;
     long fp_z = 0, fp_q = 0;
     eval::MotionTruth::KeypointTruth labels;
@@ -404,7 +403,6 @@ RunSummary run_sequence(const RunOptions& o) {
       }
       summary.score.add(frame_score);
       // Keypoints with depth on their own: only they start map points.
-      const std::vector<float> kp_depth = slam::keypoint_depths(depth, filter->last_keypoints());
       std::vector<uint8_t> keep_d, moving_d, boundary_d;
       for (size_t k = 0; k < kp_depth.size(); ++k) {
         if (!(kp_depth[k] > 0)) continue;
@@ -424,7 +422,8 @@ RunSummary run_sequence(const RunOptions& o) {
       *overlay_index << row;
     }
     if (keypoint_rows)
-      write_keypoint_rows(keypoint_rows->stream(), i, t, *filter, depth, truth ? &labels : nullptr);
+      write_keypoint_rows(keypoint_rows->stream(), i, t, *filter, kp_depth,
+                          truth ? &labels : nullptr);
     if (stats) {
       char line[640];
       std::snprintf(line, sizeof(line),
