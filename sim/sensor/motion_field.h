@@ -53,12 +53,17 @@ cv::Mat assign_bodies(const cv::Mat& depth, const cv::Mat& instance, const Camer
 // What the field moves, made once a frame from the timestamp's `bgr`
 // (CV_8UC3), exact `depth` (CV_32F, metres, 0 = no surface: a point at
 // infinity, moved by the camera's rotation only) and `body` map, for a
-// square-pixel camera (the render).
+// square-pixel camera (the render). Points are stored by coordinate (one
+// array each) so the static scene's motion, most of every image, runs as
+// one vectorised loop; the pixels on bodies are listed apart.
 struct FieldSource {
   cv::Mat bgr;
-  std::vector<Eigen::Vector3f> points;  // per pixel, its point (a ray at infinity)
-  std::vector<int16_t> motion;          // per pixel: -1 at infinity, 0 static, 1 + body
-  int bodies = 0;                       // bodies the pixels follow (largest index + 1)
+  // Per pixel, its point in homogeneous coordinates: w = 1 for a surface,
+  // w = 0 for a ray at infinity (only the rotation moves it).
+  std::vector<float> x, y, z, w;
+  std::vector<int> on_body;      // pixels that follow a body, ascending
+  std::vector<int16_t> body_of;  // their body, as indexed by the body map
+  int bodies = 0;                // bodies the pixels follow (largest index + 1)
   float f = 0, cx = 0, cy = 0;
 };
 FieldSource make_field_source(const cv::Mat& bgr, const cv::Mat& depth, const cv::Mat& body,

@@ -85,6 +85,30 @@ TEST(MotionField, ACameraMovingSidewaysShiftsAPlaneByFocalTimesStepOverDepth) {
   for (int x = c.width - 4; x < c.width; ++x) EXPECT_EQ(out.at<cv::Vec3b>(60, x), last_reached);
 }
 
+TEST(MotionField, ABandEnteringAtTheBottomTakesTheLastRowReachedAsFarAsTheFillReaches) {
+  const CameraIntrinsics c = small_camera();
+  const cv::Mat bgr = texture(c);
+  // The camera moves +y by 100 px at this depth: the bottom 100 rows are
+  // reached by no point, whole rows, so only the pixels above can fill them.
+  const double depth_m = 2.0, shift = 100.0, step = shift * depth_m / c.f;
+  const cv::Mat depth(c.height, c.width, CV_32F, cv::Scalar(depth_m));
+  const cv::Mat body(c.height, c.width, CV_16S, cv::Scalar(-1));
+  const InstantMotion m =
+      instant_motion(Pose::Identity(), {}, translated(0, step, 0), std::vector<Pose>{});
+  cv::Mat out;
+  synthesise_subframe(make_field_source(bgr, depth, body, c), m, out);
+  const int last_reached = c.height - 1 - static_cast<int>(shift);
+  for (int x : {0, 37, c.width - 1}) {
+    const cv::Vec3b colour = out.at<cv::Vec3b>(last_reached, x);
+    EXPECT_EQ(colour, bgr.at<cv::Vec3b>(c.height - 1, x)) << "column " << x;
+    // 96 rows below it take its colour; farther stays black.
+    for (int y = last_reached + 1; y <= last_reached + 96; ++y)
+      ASSERT_EQ(out.at<cv::Vec3b>(y, x), colour) << "row " << y << ", column " << x;
+    for (int y = last_reached + 97; y < c.height; ++y)
+      ASSERT_EQ(out.at<cv::Vec3b>(y, x), cv::Vec3b(0, 0, 0)) << "row " << y << ", column " << x;
+  }
+}
+
 TEST(MotionField, ANearerBodyCoversWhatIsBehindAndUncoversTheBackground) {
   const CameraIntrinsics c = small_camera();
   cv::Mat bgr(c.height, c.width, CV_8UC3, cv::Scalar(40, 80, 120));
