@@ -170,6 +170,84 @@ TEST(SimLight, ALampSwitchedOffDarkensWhatItLitAndNothingElse) {
   expect_one_error_line(twice, "lamps 1 and 2 both pick the ceiling light at (0.000000, 3.000000)");
 }
 
+// A roller door in the west wall opens to daylight at 0.25 s: the frames
+// before are those of a hall without the opening; after, the door's pixels
+// show the outside (saturated white, no depth, no instance), auto-exposure
+// stops down so the hall darkens, and the outside stays saturated while it
+// does (20 times white: it would not with the render's own white).
+TEST(SimLight, ADoorOpeningToDaylightSaturatesStopsTheCameraDownAndHasNoDepth) {
+  const int frames = 24, opens = 8;  // generated stamps at 30 Hz: frame 8 is 0.267 s
+  auto render = [&](bool opening) {
+    SmallRender r("depot_static", frames, 160, false, 1);
+    r.set = {{"motion", "{type: static, position: [-6, 0.8, 1.5], look_at: [-10, 0.8, 1.5]}"},
+             {"sensor.auto_exposure", "true"},
+             {"sensor.exposure", "0.008"},
+             {"sensor.max_exposure", "0.02"},
+             {"sensor.ae_time_constant", "0.05"},
+             {"sensor.rgb_noise", "0"}};
+    // The opening is the door's own rectangle (scenes/depot.yaml door_west).
+    if (opening)
+      r.set.push_back({"openings",
+                       "[{centre: [-10, 0.8], width: 2.4, height: 3, radiance: 20, events: "
+                       "[[0.25, 0], [0.25, 1]]}]"});
+    const std::string root = render_small(r);
+    return std::make_pair(read_dataset(root), dataset::read_exposures(root));
+  };
+  const auto [hall, hall_exposures] = render(false);
+  const auto [open, open_exposures] = render(true);
+  ASSERT_EQ(open.frames.size(), static_cast<size_t>(frames));
+  ASSERT_EQ(open_exposures.size(), static_cast<size_t>(frames));
+  for (int i = 0; i < opens; ++i) {
+    EXPECT_EQ(cv::norm(hall.rgb(i), open.rgb(i), cv::NORM_INF), 0.0) << i;
+    EXPECT_EQ(cv::norm(hall.depth_metres(i), open.depth_metres(i), cv::NORM_INF), 0.0) << i;
+    EXPECT_EQ(cv::norm(hall.labels_image(i), open.labels_image(i), cv::NORM_INF), 0.0) << i;
+  }
+  // The outside: where the hall had depth and the open door has none.
+  const int last = frames - 1;
+  const cv::Mat outside = (hall.depth_metres(last) > 0) & (open.depth_metres(last) == 0);
+  const int area = cv::countNonZero(outside);
+  const cv::Rect box = cv::boundingRect(outside);
+  // The door's face, 2.4 x 3 m at 3.94 m (within the depth camera's 4.5 m),
+  // f = 134.8 px: 82 x 103 px.
+  std::printf("daylight: %d px in a %d x %d box; exposure x gain %.4f -> %.4f\n", area, box.width,
+              box.height, hall_exposures[last].exposure * hall_exposures[last].gain,
+              open_exposures[last].exposure * open_exposures[last].gain);
+  EXPECT_NEAR(box.width, 82, 3);
+  EXPECT_NEAR(box.height, 103, 3);
+  EXPECT_GT(area, 0.97 * box.area()) << "one rectangle";
+  cv::Mat labels_outside;
+  open.labels_image(last).copyTo(labels_outside, outside);
+  EXPECT_EQ(cv::countNonZero(labels_outside), 0) << "no instance where the outside shows";
+  // Saturated, though the camera stopped down.
+  cv::Mat grey_open, grey_hall;
+  cv::cvtColor(open.rgb(last), grey_open, cv::COLOR_BGR2GRAY);
+  cv::cvtColor(hall.rgb(last), grey_hall, cv::COLOR_BGR2GRAY);
+  double darkest = 0;
+  cv::minMaxLoc(grey_open, &darkest, nullptr, nullptr, nullptr, outside);
+  EXPECT_GE(darkest, 250.0);
+  const double stopped = open_exposures[last].exposure * open_exposures[last].gain;
+  const double before = hall_exposures[last].exposure * hall_exposures[last].gain;
+  EXPECT_LT(stopped, 0.6 * before);
+  const cv::Mat inside = ~outside;
+  EXPECT_GT(cv::mean(grey_hall, inside)[0] - cv::mean(grey_open, inside)[0], 10.0)
+      << "the hall darkens";
+
+  // Bad openings: one error line each, naming the entry.
+  auto bad = [](const std::string& openings) {
+    return depot("sim render depot_static --frames 1 --width 64 -q -o " + temp_path("bad_opening") +
+                 " --set 'openings=" + openings + "'");
+  };
+  expect_one_error_line(bad("[{centre: [-5, 0], events: [[0, 1]]}]"),
+                        "is 5.00 m from the nearest wall (west)");
+  expect_one_error_line(bad("[{centre: [-10, 0], width: 13, events: [[0, 1]]}]"),
+                        "reaches past the end of the west wall (12.00 m long)");
+  expect_one_error_line(bad("[{centre: [-10, 0], height: 5, events: [[0, 1]]}]"),
+                        "taller than the hall (4.50 m)");
+  expect_one_error_line(bad("[{centre: [-10, 0], events: [[0, 1.5]]}]"),
+                        "the share of an opening open must be within [0, 1]");
+  expect_one_error_line(bad("[{centre: [-10, 0]}]"), "an opening needs 'centre: [x, y]'");
+}
+
 // Under the motion field, a frame whose exposure spans a lamp's change is
 // rendered sub-frame by sub-frame (the one render cannot show the change);
 // the frames before and after it are moved from one render as usual.

@@ -214,6 +214,20 @@ struct Scenario {
     LightSpec level;             // events only (level 1, no flicker)
   };
   std::vector<Lamp> lamps;
+  // `openings`: doorways in the hall's walls to bright daylight (a depot's
+  // roller door), sim/sensor/daylight.h. While open (from the floor up, by
+  // the share its events give) the outside shows through at `radiance`
+  // times the render's white under light 1: it saturates, auto-exposure
+  // answers it, and the depth camera gets no return there.
+  struct Opening {
+    Eigen::Vector2d centre{0, 0};  // m, hall coordinates: a point on a wall's foot
+    double width = 3.0;            // m, along the wall
+    double height = 3.0;           // m, from the floor
+    double radiance = 20.0;        // x the render's white under light 1
+    LightSpec open;                // events: [time, share open 0..1]; level 1
+    std::string where;             // its entry (file:line), for errors found later
+  };
+  std::vector<Opening> openings;
   std::vector<ActorSpec> written_actors;  // as in the file
   std::vector<ActorSpec> actors;          // after dynamic-load scaling
 };

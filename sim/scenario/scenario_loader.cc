@@ -227,10 +227,15 @@ void read_timestamps(const Fields& f, TimestampSpec& t) {
 }
 
 // `light_events: [[t, level], ...]` (or a lamp's `events`), times ascending.
-std::vector<Eigen::Vector2d> read_light_events(const Fields& f, const char* key = "light_events") {
+// Events [time, value], times ascending, each value within [0, most]. The
+// errors name an event `event` ("a light event must be [time, level]") and
+// its value `value` ("a light level must be within [0, 10]").
+std::vector<Eigen::Vector2d> read_events(const Fields& f, const char* key, const std::string& event,
+                                         const std::string& value, const std::string& value_name,
+                                         double most) {
   const YAML::Node n = f.node(key);
   if (!n.IsSequence())
-    fail(f.where(n), "'" + std::string(key) + "' must be a list of [time, level]");
+    fail(f.where(n), "'" + std::string(key) + "' must be a list of [time, " + value_name + "]");
   std::vector<Eigen::Vector2d> events;
   for (const auto& e : n) {
     std::vector<double> v;
@@ -239,13 +244,21 @@ std::vector<Eigen::Vector2d> read_light_events(const Fields& f, const char* key 
     } catch (const YAML::Exception&) {
     }
     if (v.size() != 2 || !std::isfinite(v[0]) || !std::isfinite(v[1]))
-      fail(f.where(e), "a light event must be [time, level]");
-    if (v[1] < 0 || v[1] > 10) fail(f.where(e), "a light level must be within [0, 10]");
+      fail(f.where(e), event + " must be [time, " + value_name + "]");
+    if (v[1] < 0 || v[1] > most) {
+      std::ostringstream bound;
+      bound << most;  // 10, 1: as the bound reads
+      fail(f.where(e), value + " must be within [0, " + bound.str() + "]");
+    }
     if (!events.empty() && v[0] < events.back().x())
       fail(f.where(e), std::string(key) + " must be in time order");
     events.emplace_back(v[0], v[1]);
   }
   return events;
+}
+
+std::vector<Eigen::Vector2d> read_light_events(const Fields& f, const char* key = "light_events") {
+  return read_events(f, key, "a light event", "a light level", "level", 10.0);
 }
 
 void read_light_and_colour(const Fields& f, SensorSpec& s) {
@@ -457,6 +470,33 @@ std::vector<Scenario::Lamp> read_lamps(const Fields& top, const Source& source) 
   return lamps;
 }
 
+// `openings: [{centre: [x, y], width, height, radiance, events: [[t, open],
+// ...]}, ...]`; whether the centre lies on a wall is checked against the
+// scene's hall (sim/sensor/daylight.h place_openings).
+std::vector<Scenario::Opening> read_openings(const Fields& top, const Source& source) {
+  const YAML::Node n = top.node("openings");
+  if (!n.IsSequence())
+    fail(top.where(n), "'openings' must be a list of {centre, width, height, radiance, events}");
+  std::vector<Scenario::Opening> openings;
+  for (const auto& node : n) {
+    Fields f(node, source, "an opening");
+    f.allow_only({"centre", "width", "height", "radiance", "events"});
+    if (!f.has("centre") || !f.has("events"))
+      fail(f.where(), "an opening needs 'centre: [x, y]' (on a wall) and 'events' ([time, open])");
+    Scenario::Opening o;
+    o.where = f.where();
+    o.centre = f.vec2("centre", o.centre);
+    o.width = f.number("width", o.width, 0.1, 100.0);
+    o.height = f.number("height", o.height, 0.1, 100.0);
+    o.radiance = f.number("radiance", o.radiance, 1.0, 1e4);
+    o.open.events =
+        read_events(f, "events", "an opening's event", "the share of an opening open", "open", 1.0);
+    if (o.open.events.empty()) fail(f.where(f.node("events")), "an opening's events are empty");
+    openings.push_back(o);
+  }
+  return openings;
+}
+
 // `camera_cover: [[start, end], ...]`, seconds since the first frame. Every
 // problem is one error naming the file, the line and the key.
 std::vector<CoverInterval> read_camera_cover(const Fields& top, const Scenario& s) {
@@ -561,7 +601,8 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
   top.allow_only({"name",         "description", "scene",         "classes",      "seed",
                   "seed_world",   "frames",      "shadows",       "dynamic_load", "style",
                   "actors_style", "props_style", "asset_catalog", "camera",       "motion",
-                  "timestamps",   "sensor",      "camera_cover",  "lamps",        "actors"});
+                  "timestamps",   "sensor",      "camera_cover",  "lamps",        "openings",
+                  "actors"});
 
   Scenario s;
   s.source_path = path;
@@ -607,6 +648,7 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
   }
   if (top.has("camera_cover")) s.camera_cover = read_camera_cover(top, s);
   if (top.has("lamps")) s.lamps = read_lamps(top, source);
+  if (top.has("openings")) s.openings = read_openings(top, source);
 
   if (YAML::Node actors = top.node("actors")) {
     if (!actors.IsSequence()) fail(top.where(actors), "'actors' must be a list");

@@ -59,6 +59,17 @@ cv::Mat light_on_sensor(const cv::Mat& bgr, const ColourPipelineSpec& colour,
       vignette[x] = row * static_cast<float>(vignetting_factor(colour.vignetting, x, y, w, h));
     for (int x = 0; x < w; ++x)
       for (int c = 0; c < 3; ++c) out[3 * x + c] = decode[in[3 * x + c]] * vignette[x];
+    if (capture.daylight.empty()) continue;
+    // Daylight: its own radiance, white, through exposure and vignetting
+    // but not the hall's light.
+    const float* sun = capture.daylight.ptr<float>(y);
+    for (int x = 0; x < w; ++x)
+      if (sun[x] > 0) {
+        const float v =
+            sun[x] *
+            static_cast<float>(capture.scale * vignetting_factor(colour.vignetting, x, y, w, h));
+        out[3 * x] = out[3 * x + 1] = out[3 * x + 2] = v;
+      }
   }
   if (colour.lens_blur > 0)
     cv::GaussianBlur(linear, linear, cv::Size(0, 0), colour.lens_blur, colour.lens_blur,
@@ -167,11 +178,17 @@ double metered_brightness(const cv::Mat& bgr, const ColourPipelineSpec& colour,
   for (int y = 0; y < h; y += 4) {
     const auto* in = bgr.ptr<uint8_t>(y);
     const double row = capture.scale * row_level(capture, y);
+    const float* sun = capture.daylight.empty() ? nullptr : capture.daylight.ptr<float>(y);
     for (int x = 0; x < w; x += 4) {
-      const double f = row * vignetting_factor(colour.vignetting, x, y, w, h);
+      const double vignette = vignetting_factor(colour.vignetting, x, y, w, h);
+      ++count;
+      if (sun && sun[x] > 0) {  // daylight: white at its own radiance
+        sum += srgb_encode(std::min(1.0, sun[x] * capture.scale * vignette));
+        continue;
+      }
+      const double f = row * vignette;
       auto out = [&](int c) { return srgb_encode(std::min(1.0, decode[in[3 * x + c]] * f)); };
       sum += 0.114 * out(0) + 0.587 * out(1) + 0.299 * out(2);
-      ++count;
     }
   }
   return count ? sum / count : 0.0;

@@ -25,6 +25,10 @@ struct ColourCapture {
   double gain = 1.0;
   double scale = 1.0;            // exposure x gain against the render's reference
   std::vector<float> row_light;  // mean light level each row saw; empty = 1
+  // CV_32F per pixel: the radiance (x the render's white under light 1) of
+  // daylight seen through an opening (sim/sensor/daylight.h), which the
+  // hall's light level does not scale; 0 where none, empty when none at all.
+  cv::Mat daylight;
 };
 
 // Applies the colour sensor to a render (CV_8UC3 BGR), in place. `seed`

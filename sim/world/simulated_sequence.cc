@@ -117,6 +117,8 @@ SimulatedSequence::SimulatedSequence(const Scenario& scenario, GlBackend backend
         make_lens_mapping(scenario_.camera, lens, scenario_.source_path));
   const CameraIntrinsics& render_camera = lens_ ? lens_->canvas : scenario_.camera;
   lamp_lights_ = lamp_lights(scenario_, layout);
+  openings_ = place_openings(scenario_.openings, layout.length, layout.width, layout.height);
+  if (!openings_.empty()) pixel_rays_ = pixel_rays(scenario_.camera, lens_.get());
   world_ = std::make_unique<World>(build_scene(layout, classes_, scenario_, render_camera));
   if (render)
     renderer_ =
@@ -259,8 +261,12 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
   }
   if (shutter) frame->bgr = integrate_shutter(colours, offsets, shutter_);
   if (own_depth) frame->depth = depth_frame.depth;
+  const cv::Mat daylight =
+      frame && !covered
+          ? let_in_daylight(*frame, t_rgb + (own_depth ? depth_offset_ : 0.0), since_first)
+          : cv::Mat();
   if (scenario_.sensor.forms_colour())
-    truth.capture = expose(frame ? &frame->bgr : nullptr, since_first);
+    truth.capture = expose(frame ? &frame->bgr : nullptr, since_first, daylight);
   if (timings) {
     timings->subframes = static_cast<int>(offsets.size());
     timings->renders = field ? 1 : static_cast<int>(offsets.size());
@@ -344,8 +350,19 @@ void SimulatedSequence::render_colour(cv::Mat& bgr, RenderTimings* timings) {
   apply_lens_colour(*lens_, canvas_.bgr, bgr);
 }
 
-ColourCapture SimulatedSequence::expose(const cv::Mat* bgr, double since_first) {
+cv::Mat SimulatedSequence::let_in_daylight(RenderedFrame& frame, double t_depth,
+                                           double since_first) const {
+  if (openings_.empty()) return {};
+  const cv::Mat radiance = daylight_radiance(frame.depth, pixel_rays_, motion_->pose_at(t_depth),
+                                             openings_, since_first);
+  show_daylight(radiance, frame.bgr, frame.depth, frame.instance);
+  return radiance;
+}
+
+ColourCapture SimulatedSequence::expose(const cv::Mat* bgr, double since_first,
+                                        const cv::Mat& daylight) {
   ColourCapture capture;
+  capture.daylight = daylight;
   const ExposureSetting& setting = exposure_control_.current();
   capture.exposure = setting.exposure;
   capture.gain = setting.gain;

@@ -13,6 +13,7 @@
 #include "sim/scenario/scenario.h"
 #include "sim/sensor/auto_exposure.h"
 #include "sim/sensor/colour_pipeline.h"
+#include "sim/sensor/daylight.h"
 #include "sim/sensor/lens.h"
 #include "sim/sensor/shutter.h"
 #include "sim/world/world.h"
@@ -115,9 +116,11 @@ class SimulatedSequence {
   int next_ = 0;
   ShutterTiming shutter_;  // inactive for an ideal sensor
   ExposureControl exposure_control_;
-  double depth_offset_ = 0;       // s, the depth camera's instant (0 for an ideal sensor)
-  double last_body_speed_ = 0;    // m/s, fastest tracked body over the last frame
-  std::vector<int> lamp_lights_;  // per scenario lamp, the model light it drives
+  double depth_offset_ = 0;            // s, the depth camera's instant (0 for an ideal sensor)
+  double last_body_speed_ = 0;         // m/s, fastest tracked body over the last frame
+  std::vector<int> lamp_lights_;       // per scenario lamp, the model light it drives
+  std::vector<WallOpening> openings_;  // doorways to daylight (sim/sensor/daylight.h)
+  cv::Mat pixel_rays_;                 // the output pixels' rays, when there are openings
 
   // Sets the renderer's lamps to their levels at `since_first` seconds.
   void light_lamps(double since_first);
@@ -141,8 +144,12 @@ class SimulatedSequence {
   double image_motion_over_span(double t_rgb) const;
   void record_truth(const Pose& world_camera, double t_rgb, double t_depth, bool covered,
                     FrameTruth& truth);
-  // The capture's exposure and light; meters `bgr` for the next frame.
-  ColourCapture expose(const cv::Mat* bgr, double since_first);
+  // The capture's exposure and light (and `daylight`, the radiance through
+  // openings); meters `bgr` for the next frame.
+  ColourCapture expose(const cv::Mat* bgr, double since_first, const cv::Mat& daylight);
+  // Shows daylight through the openings in the finished frame (depth taken
+  // at `t_depth`); returns its radiance for the colour pipeline.
+  cv::Mat let_in_daylight(RenderedFrame& frame, double t_depth, double since_first) const;
 };
 
 }  // namespace depot::sim
