@@ -137,10 +137,15 @@ TEST(Sweep, ResumesAfterBeingKilledAndReports) {
   EXPECT_EQ(by_id.at("depot_walking_xyz__load-0__s1__full").moving_share, 0.0);
   EXPECT_GT(by_id.at("depot_walking_xyz__load-1.5__s1__full").moving_share, 0.1);
   EXPECT_GT(by_id.at("depot_walking_xyz__load-1.5__s1__full").recall, 0.5);
+  // Over the keypoints with depth (the ones that start map points) too.
+  EXPECT_GT(by_id.at("depot_walking_xyz__load-1.5__s1__full").recall_with_depth, 0.5);
+  EXPECT_GT(by_id.at("depot_walking_xyz__load-1.5__s1__full").precision_with_depth, 0.1);
   EXPECT_TRUE(std::isnan(by_id.at("depot_walking_xyz__load-1.5__s1__orb").precision));
+  EXPECT_TRUE(std::isnan(by_id.at("depot_walking_xyz__load-1.5__s1__orb").recall_with_depth));
 
   const std::string tables = read(sweep / "report" / "tables.md");
   EXPECT_NE(tables.find("| depot_walking_xyz | 1.5 |"), std::string::npos) << tables;
+  EXPECT_NE(tables.find("recall with depth"), std::string::npos) << tables;
   EXPECT_NE(resumed.output.find("report: "), std::string::npos);
 
   // A second resume has nothing to do.

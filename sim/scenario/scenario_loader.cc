@@ -226,7 +226,6 @@ void read_timestamps(const Fields& f, TimestampSpec& t) {
          "times are a real driver's already)");
 }
 
-// `light_events: [[t, level], ...]` (or a lamp's `events`), times ascending.
 // Events [time, value], times ascending, each value within [0, most]. The
 // errors name an event `event` ("a light event must be [time, level]") and
 // its value `value` ("a light level must be within [0, 10]").
@@ -257,6 +256,7 @@ std::vector<Eigen::Vector2d> read_events(const Fields& f, const char* key, const
   return events;
 }
 
+// `light_events: [[t, level], ...]` (or a lamp's `events`), times ascending.
 std::vector<Eigen::Vector2d> read_light_events(const Fields& f, const char* key = "light_events") {
   return read_events(f, key, "a light event", "a light level", "level", 10.0);
 }

@@ -77,7 +77,10 @@ nlohmann::json to_json(const RunRecord& r) {
             {"false_negative", r.false_negative},
             {"true_negative", r.true_negative},
             {"false_positive_boundary", r.false_positive_boundary},
-            {"true_negative_boundary", r.true_negative_boundary}}},
+            {"true_negative_boundary", r.true_negative_boundary},
+            {"with_depth",
+             {{"precision_without_boundary", number(r.precision_with_depth)},
+              {"recall", number(r.recall_with_depth)}}}}},
           {"timing",
            {{"median_frame_ms", number(r.median_frame_ms)},
             {"rejection_ms", number(r.rejection_ms)},
@@ -142,6 +145,11 @@ RunRecord read_run_record(const std::string& path) {
     r.precision_without_boundary = number(rej, "precision_without_boundary");
     r.false_positive_boundary = rej.at("false_positive_boundary").get<long>();
     r.true_negative_boundary = rej.at("true_negative_boundary").get<long>();
+    // Records written before the with-depth score have none.
+    if (rej.contains("with_depth")) {
+      r.precision_with_depth = number(rej.at("with_depth"), "precision_without_boundary");
+      r.recall_with_depth = number(rej.at("with_depth"), "recall");
+    }
     const auto& timing = j.at("timing");
     r.median_frame_ms = number(timing, "median_frame_ms");
     r.rejection_ms = number(timing, "rejection_ms");

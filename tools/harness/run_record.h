@@ -46,6 +46,9 @@ struct RunRecord {
   // Rejection vs ground truth; `precision` counts boundary points (see
   // eval/motion_truth.h) as static, `precision_without_boundary` leaves them out.
   double precision = NAN, precision_without_boundary = NAN, recall = NAN;
+  // The same over the keypoints with depth only (boundary points left out):
+  // only they start map points. NaN for another system's run.
+  double precision_with_depth = NAN, recall_with_depth = NAN;
   long true_positive = 0, false_positive = 0, false_negative = 0, true_negative = 0;
   long false_positive_boundary = 0, true_negative_boundary = 0;  // boundary points among them
   double median_frame_ms = NAN, rejection_ms = NAN;

@@ -255,6 +255,8 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
     if (job.mode != "orb") {
       r.rejection_ms = s.filter_ms;
       add_rejection(s.score, r);
+      r.precision_with_depth = s.score_with_depth.precision_without_boundary();
+      r.recall_with_depth = s.score_with_depth.recall();
     }
     write_tum_trajectory((fs::path(out.path()) / "trajectory.txt").string(), s.trajectory,
                          "depot sweep run " + job.id + ": tracked frames only");

@@ -96,7 +96,7 @@ SweepSummary summarize_records(const SweepPlan& plan, const std::vector<RunRecor
       e.cell = c;
       e.mode = mode;
       std::vector<double> ate, ate_sd, rt, rt_sd, rr, rr_sd, p, pb, r, tracked, moving;
-      std::vector<double> posed, maps, ate_all;
+      std::vector<double> posed, maps, ate_all, pd, rd;
       for (const RunRecord* run : groups[{c, mode}]) {
         e.runs_by_seed[run->seed] = *run;
         ++e.runs;
@@ -111,6 +111,8 @@ SweepSummary summarize_records(const SweepPlan& plan, const std::vector<RunRecor
         p.push_back(run->precision);
         pb.push_back(run->precision_without_boundary);
         r.push_back(run->recall);
+        pd.push_back(run->precision_with_depth);
+        rd.push_back(run->recall_with_depth);
         tracked.push_back(run->frames ? static_cast<double>(run->tracked) / run->frames : NAN);
         moving.push_back(run->moving_share);
         posed.push_back(run->frames ? static_cast<double>(run->posed) / run->frames : NAN);
@@ -126,6 +128,8 @@ SweepSummary summarize_records(const SweepPlan& plan, const std::vector<RunRecor
       e.precision = mean_std(p);
       e.precision_without_boundary = mean_std(pb);
       e.recall = mean_std(r);
+      e.precision_with_depth = mean_std(pd);
+      e.recall_with_depth = mean_std(rd);
       e.tracked_share = mean_std(tracked);
       e.moving_share = mean_std(moving);
       e.posed_share = mean_std(posed);

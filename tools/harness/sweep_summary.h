@@ -32,6 +32,8 @@ struct CellModeSummary {
   MeanStd rpe_rot_rmse, rpe_rot_std;      // deg
   MeanStd precision, recall;              // boundary points counted as static
   MeanStd precision_without_boundary;     // boundary points left out
+  MeanStd precision_with_depth;           // over keypoints with depth, boundary left out
+  MeanStd recall_with_depth;              // over keypoints with depth
   MeanStd tracked_share;                  // frames in trajectory / frames
   MeanStd posed_share;                    // frames with a pose in any atlas map / frames
   MeanStd maps;                           // atlas maps holding frames

@@ -208,7 +208,9 @@ Table rejection_table(const SweepPlan& plan, const SweepSummary& s) {
       "Keypoints rejected as dynamic vs keypoints on objects flagged moving by the "
       "simulator (precision, recall: mean ± std over seeds). Boundary points (centre on the "
       "background, FAST circle touching a mover) are left out of `precision` and counted as "
-      "static in `precision (boundary static)`; recall is the same both ways. tracked = share "
+      "static in `precision (boundary static)`; recall is the same both ways. The with-depth "
+      "columns score only the keypoints with a depth reading (boundary points left out): only "
+      "they start map points (empty for another system's runs). tracked = share "
       "of the frames given that have a pose in the final trajectory (mean over seeds; lost "
       "frames and frames of a map abandoned by a reset have none); lost = frames tracking "
       "reported lost, summed over seeds.";
@@ -217,6 +219,8 @@ Table rejection_table(const SweepPlan& plan, const SweepSummary& s) {
   t.columns.push_back({"precision", 3, true});
   t.columns.push_back({"precision (boundary static)", 3, true});
   t.columns.push_back({"recall", 3, true});
+  t.columns.push_back({"precision with depth", 3, true});
+  t.columns.push_back({"recall with depth", 3, true});
   t.columns.push_back({"tracked", 1, false, " %"});
   t.columns.push_back({"lost frames", 0});
   t.columns.push_back({"runs without trajectory", 0});
@@ -228,6 +232,8 @@ Table rejection_table(const SweepPlan& plan, const SweepSummary& s) {
       row.push_back(number(e.precision_without_boundary));
       row.push_back(number(e.precision));
       row.push_back(number(e.recall));
+      row.push_back(number(e.precision_with_depth));
+      row.push_back(number(e.recall_with_depth));
       row.push_back(number(100 * e.tracked_share.mean));
       row.push_back(number(e.runs ? e.lost : NAN));
       row.push_back(number(e.runs ? e.without_trajectory : NAN));
