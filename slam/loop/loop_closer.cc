@@ -300,13 +300,10 @@ bool LoopCloser::plausible_correction(const KeyFrame& kf, const KeyFrame& matche
 }
 
 bool LoopCloser::correct(KeyFrame* kf, Loop& loop) {
-  mapper_.pause();
+  const MappingPause paused(mapper_);  // resumed after the map lock is released
   {
     std::lock_guard<std::mutex> lock(map_.mutex());
-    if (kf->bad || loop.matched->bad) {
-      mapper_.resume();
-      return false;
-    }
+    if (kf->bad || loop.matched->bad) return false;
     kf->update_connections();
     std::vector<KeyFrame*> connected = kf->covisibles();
     connected.push_back(kf);
@@ -340,7 +337,6 @@ bool LoopCloser::correct(KeyFrame* kf, Loop& loop) {
     closures_.push_back({kf->id, loop.matched->id, kf->timestamp, loop.n_matches, moved_m,
                          path_between(map_, kf->map_id, loop.matched->id, kf->id)});
   }
-  mapper_.resume();
   return true;
 }
 
@@ -400,13 +396,10 @@ bool LoopCloser::confirmed_by_neighbours(KeyFrame* kf, const Loop& loop) const {
 }
 
 bool LoopCloser::merge(KeyFrame* kf, Loop& loop) {
-  mapper_.pause();
+  const MappingPause paused(mapper_);  // resumed after the map lock is released
   {
     std::lock_guard<std::mutex> lock(map_.mutex());
-    if (kf->bad || loop.matched->bad || kf->map_id == loop.matched->map_id) {
-      mapper_.resume();
-      return false;
-    }
+    if (kf->bad || loop.matched->bad || kf->map_id == loop.matched->map_id) return false;
     const int kf_map = kf->map_id, matched_map = loop.matched->map_id;
     // kf's map frame into the matched map's: kf is at loop.T_cw there.
     const Pose T_matched_kf = loop.T_cw.inverse() * kf->T_cw;
@@ -437,7 +430,6 @@ bool LoopCloser::merge(KeyFrame* kf, Loop& loop) {
     record.moved_keyframes = static_cast<int>(kf_map_moves ? n_kf_map : n_matched_map);
     closures_.push_back(record);
   }
-  mapper_.resume();
   return true;
 }
 

@@ -95,4 +95,18 @@ class LocalMapper : public KeyFrameSink {
   KeyFrameWorker worker_;  // last: its thread may call process() at once
 };
 
+// Holds local mapping paused for its own lifetime (LocalMapper::pause on
+// construction, resume on destruction), so a correction that throws cannot
+// leave mapping paused for good.
+class MappingPause {
+ public:
+  explicit MappingPause(LocalMapper& mapper) : mapper_(mapper) { mapper_.pause(); }
+  ~MappingPause() { mapper_.resume(); }
+  MappingPause(const MappingPause&) = delete;
+  MappingPause& operator=(const MappingPause&) = delete;
+
+ private:
+  LocalMapper& mapper_;
+};
+
 }  // namespace depot::slam

@@ -248,6 +248,25 @@ TEST_F(LocalMapperTest, AFailureInTheMappingThreadReachesTheCallerAsOneError) {
   mapper.stop();
 }
 
+TEST_F(LocalMapperTest, APauseEndsWithItsScopeEvenWhenTheCorrectionThrows) {
+  LocalMapper mapper(map_, true);
+  KeyFrame* kf = add_first_keyframe();
+  try {
+    const MappingPause paused(mapper);
+    mapper.insert_keyframe(kf);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    EXPECT_EQ(mapper.queued(), 1u) << "held while paused";
+    fail("loop closing", "a correction failed");
+  } catch (const Error&) {
+  }
+  for (int i = 0; i < 2000 && !mapper.idle(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  EXPECT_TRUE(mapper.idle()) << "mapping stayed paused";
+  EXPECT_EQ(mapper.queued(), 0u);
+  mapper.throw_if_failed();
+  mapper.stop();
+}
+
 TEST_F(LocalMapperTest, AFailureInSynchronousModeIsThrownAtOnceTheSameWay) {
   LocalMapper mapper(map_, false);
   Frame broken(0, 0.0, features_);
