@@ -240,7 +240,7 @@ TEST(SimLight, ADoorOpeningToDaylightSaturatesStopsTheCameraDownAndHasNoDepth) {
   expect_one_error_line(bad("[{centre: [-5, 0], events: [[0, 1]]}]"),
                         "is 5.00 m from the nearest wall (west)");
   expect_one_error_line(bad("[{centre: [-10, 0], width: 13, events: [[0, 1]]}]"),
-                        "reaches past the end of the west wall (12.00 m long)");
+                        "comes within 0.10 m of the end of the west wall (12.00 m long)");
   expect_one_error_line(bad("[{centre: [-10, 0], height: 5, events: [[0, 1]]}]"),
                         "taller than the hall (4.50 m)");
   expect_one_error_line(bad("[{centre: [-10, 0], events: [[0, 1.5]]}]"),

@@ -39,6 +39,12 @@ const std::vector<uint8_t>& encode_table() {
   return table;
 }
 
+void check_daylight(const ColourCapture& capture, const cv::Mat& bgr) {
+  if (!capture.daylight.empty() &&
+      (capture.daylight.type() != CV_32F || capture.daylight.size() != bgr.size()))
+    fail("colour pipeline", "the daylight map differs from the image in size or type");
+}
+
 float row_level(const ColourCapture& capture, int y) {
   return capture.row_light.empty() ? 1.0f : capture.row_light[y];
 }
@@ -50,6 +56,7 @@ cv::Mat light_on_sensor(const cv::Mat& bgr, const ColourPipelineSpec& colour,
   const auto& decode = decode_table();
   cv::Mat linear(bgr.size(), CV_32FC3);
   const int w = bgr.cols, h = bgr.rows;
+  check_daylight(capture, bgr);
   std::vector<float> vignette(w);
   for (int y = 0; y < h; ++y) {
     const auto* in = bgr.ptr<uint8_t>(y);
@@ -173,6 +180,7 @@ double metered_brightness(const cv::Mat& bgr, const ColourPipelineSpec& colour,
                           const ColourCapture& capture) {
   const auto& decode = decode_table();
   const int w = bgr.cols, h = bgr.rows;
+  check_daylight(capture, bgr);
   double sum = 0.0;
   int count = 0;
   for (int y = 0; y < h; y += 4) {

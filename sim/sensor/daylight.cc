@@ -1,6 +1,8 @@
 #include "sim/sensor/daylight.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "common/error.h"
 #include "sim/sensor/light.h"
@@ -10,6 +12,9 @@ namespace depot::sim {
 namespace {
 
 constexpr double kOnWall = 0.05;  // m, how near a wall an opening's centre must lie
+// A surface this far behind the wall's plane still lies on it (depth noise
+// of the exact render is far smaller).
+constexpr double kBehindWall = 0.05;
 // The floor in front of an open door stays floor: the opening starts 1 cm up.
 constexpr double kAboveFloor = 0.01;
 
@@ -44,11 +49,13 @@ std::vector<WallOpening> place_openings(const std::vector<Scenario::Opening>& op
       fail(o.where, "opening centre (" + metres(x) + ", " + metres(y) + ") is " +
                         metres(wall->distance) + " from the nearest wall (" + wall->name +
                         "); an opening lies on a wall's foot");
+    // It keeps kLeafDepth from the wall's ends: the wall round the corner
+    // lies that near its plane and would show the outside too.
     const double along_centre = wall->along.dot(wall->foot);
-    if (std::abs(along_centre) + o.width / 2 > wall->half_length + 1e-9)
+    if (std::abs(along_centre) + o.width / 2 > wall->half_length - kLeafDepth + 1e-9)
       fail(o.where, "opening " + metres(o.width) + " wide at " + metres(along_centre) +
-                        " reaches past the end of the " + wall->name + " wall (" +
-                        metres(2 * wall->half_length) + " long)");
+                        " comes within " + metres(kLeafDepth) + " of the end of the " + wall->name +
+                        " wall (" + metres(2 * wall->half_length) + " long)");
     if (o.height > height + 1e-9)
       fail(o.where, "opening " + metres(o.height) + " high is taller than the hall (" +
                         metres(height) + ")");
@@ -71,9 +78,14 @@ cv::Mat pixel_rays(const CameraIntrinsics& camera, const LensMapping* lens) {
     for (int x = 0; x < camera.width; ++x) {
       cv::Vec2f& r = rays.at<cv::Vec2f>(y, x);
       if (lens) {
+        // The canvas pixel the lens took this pixel's depth from (nearest,
+        // border replicated: sim/sensor/lens.cc), not the exact map: the
+        // depth belongs to that pixel's ray.
         const CameraIntrinsics& c = lens->canvas;
-        r[0] = static_cast<float>((lens->map_x.at<float>(y, x) - c.cx) / c.f);
-        r[1] = static_cast<float>((lens->map_y.at<float>(y, x) - c.cy) / c.f);
+        const int u = std::clamp(cvRound(lens->map_x.at<float>(y, x)), 0, c.width - 1);
+        const int v = std::clamp(cvRound(lens->map_y.at<float>(y, x)), 0, c.height - 1);
+        r[0] = static_cast<float>((u - c.cx) / c.f);
+        r[1] = static_cast<float>((v - c.cy) / c.f);
       } else {
         r[0] = static_cast<float>((x - camera.cx) / camera.f);
         r[1] = static_cast<float>((y - camera.cy) / camera.focal_y());
@@ -114,7 +126,7 @@ cv::Mat daylight_radiance(const cv::Mat& depth, const cv::Mat& rays, const Pose&
       for (const Open& o : open) {
         const Eigen::Vector3d q = p - o.foot;
         const double in_front = q.dot(o.inward), side = q.dot(o.along), rise = q.dot(up);
-        if (in_front < -kOnWall || in_front > kLeafDepth || std::abs(side) > o.half_width ||
+        if (in_front < -kBehindWall || in_front > kLeafDepth || std::abs(side) > o.half_width ||
             rise < kAboveFloor || rise > o.top)
           continue;
         out[x] = static_cast<float>(o.radiance);

@@ -13,9 +13,11 @@
 //    and sunlight drowns an infrared pattern);
 //  - the labels show no instance, as for any pixel without a surface.
 // Whatever stands in front of the opening (a person, a rack) hides it.
-// Which pixels are open is decided from the frame's depth at its timestamp
-// (under a rolling shutter every row alike). Plain functions of images and
-// poses; no MuJoCo here.
+// Which pixels are open is decided from a depth image at its own instant:
+// the colour image and labels from the render at the frame's timestamp
+// (under a rolling shutter every row alike), a depth camera with its own
+// clock from its own image. Plain functions of images and poses; no MuJoCo
+// here.
 #include <string>
 #include <vector>
 

@@ -93,8 +93,10 @@ TEST(Daylight, AnOpeningOffTheWallsOrLargerThanItsWallIsAnErrorNamingIt) {
                  "(west); an opening lies on a wall's foot");
   }
   Scenario::Opening wide = west_door(1.0);
-  wide.width = 11.0;  // centred 0.8 m off the middle of a 12 m wall
+  wide.width = 10.4;  // centred 0.8 m off the middle of a 12 m wall: 5 cm from its end
   EXPECT_THROW(place_openings({wide}, 20, 12, 4.5), Error);
+  wide.width = 10.2;  // 15 cm
+  EXPECT_NO_THROW(place_openings({wide}, 20, 12, 4.5));
   Scenario::Opening tall = west_door(1.0);
   tall.height = 4.6;
   EXPECT_THROW(place_openings({tall}, 20, 12, 4.5), Error);

@@ -260,11 +260,11 @@ bool SimulatedSequence::advance(RenderedFrame* frame, FrameTruth& truth, Sequenc
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   }
   if (shutter) frame->bgr = integrate_shutter(colours, offsets, shutter_);
-  if (own_depth) frame->depth = depth_frame.depth;
   const cv::Mat daylight =
       frame && !covered
-          ? let_in_daylight(*frame, t_rgb + (own_depth ? depth_offset_ : 0.0), since_first)
+          ? let_in_daylight(*frame, own_depth ? &depth_frame.depth : nullptr, t_rgb, since_first)
           : cv::Mat();
+  if (own_depth) frame->depth = depth_frame.depth;
   if (scenario_.sensor.forms_colour())
     truth.capture = expose(frame ? &frame->bgr : nullptr, since_first, daylight);
   if (timings) {
@@ -350,12 +350,20 @@ void SimulatedSequence::render_colour(cv::Mat& bgr, RenderTimings* timings) {
   apply_lens_colour(*lens_, canvas_.bgr, bgr);
 }
 
-cv::Mat SimulatedSequence::let_in_daylight(RenderedFrame& frame, double t_depth,
+cv::Mat SimulatedSequence::let_in_daylight(RenderedFrame& frame, cv::Mat* own_depth, double t_rgb,
                                            double since_first) const {
   if (openings_.empty()) return {};
-  const cv::Mat radiance = daylight_radiance(frame.depth, pixel_rays_, motion_->pose_at(t_depth),
-                                             openings_, since_first);
-  show_daylight(radiance, frame.bgr, frame.depth, frame.instance);
+  // The colour and the labels as the render at the timestamp shows them.
+  const cv::Mat radiance =
+      daylight_radiance(frame.depth, pixel_rays_, motion_->pose_at(t_rgb), openings_, since_first);
+  cv::Mat none;
+  show_daylight(radiance, frame.bgr, own_depth ? none : frame.depth, frame.instance);
+  // The depth camera's own image at its own instant.
+  if (own_depth)
+    show_daylight(
+        daylight_radiance(*own_depth, pixel_rays_, motion_->pose_at(t_rgb + depth_offset_),
+                          openings_, since_first + depth_offset_),
+        none, *own_depth, none);
   return radiance;
 }
 

@@ -147,9 +147,12 @@ class SimulatedSequence {
   // The capture's exposure and light (and `daylight`, the radiance through
   // openings); meters `bgr` for the next frame.
   ColourCapture expose(const cv::Mat* bgr, double since_first, const cv::Mat& daylight);
-  // Shows daylight through the openings in the finished frame (depth taken
-  // at `t_depth`); returns its radiance for the colour pipeline.
-  cv::Mat let_in_daylight(RenderedFrame& frame, double t_depth, double since_first) const;
+  // Shows daylight through the openings in the finished frame: its colour
+  // and labels from the render at the timestamp, the depth camera's own
+  // image (`own_depth`, when it has its own instant) from that image at its
+  // instant. Returns the radiance for the colour pipeline.
+  cv::Mat let_in_daylight(RenderedFrame& frame, cv::Mat* own_depth, double t_rgb,
+                          double since_first) const;
 };
 
 }  // namespace depot::sim

@@ -110,16 +110,12 @@ void GlobalAdjuster::run() {
   try {
     const GlobalBaResult result = global_bundle_adjustment(map_, &abort_, iterations_);
     if (result.completed && !abort_) {
-      mapper_.pause();
-      {
-        std::lock_guard<std::mutex> lock(map_.mutex());
-        apply_global_adjustment(map_, result);
-      }
-      mapper_.resume();
+      const MappingPause paused(mapper_);  // resumed after the map lock is released
+      std::lock_guard<std::mutex> lock(map_.mutex());
+      apply_global_adjustment(map_, result);
       applied = true;
     }
   } catch (...) {
-    mapper_.resume();
     std::lock_guard<std::mutex> lock(mutex_);
     if (!failure_) failure_ = std::current_exception();
   }
