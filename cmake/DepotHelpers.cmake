@@ -5,6 +5,7 @@ function(depot_library name)
   target_include_directories(${name} PUBLIC ${DEPOT_SOURCE_DIR})
   target_compile_options(${name} PRIVATE ${DEPOT_WARNINGS})
   target_link_libraries(${name} PUBLIC ${ARG_DEPS})
+  depot_register_folder(${name} "${ARG_SOURCES}")
 endfunction()
 
 # depot_test(NAME SOURCES ... DEPS ... [LABELS ...] [SERIAL]): a GoogleTest

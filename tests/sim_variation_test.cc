@@ -122,7 +122,7 @@ int check_lanes(const std::string& path, int seeds,
   int shifted = 0;
   for (uint64_t seed = 1; seed <= static_cast<uint64_t>(seeds); ++seed) {
     const sim::StaticObstacles obstacles(layout, seed);
-    const std::vector<sim::ActorSpec> varied = sim::vary_actors(scenario.actors, seed, obstacles);
+    const std::vector<sim::ActorSpec> varied = sim::vary_actors(scenario.actors, seed, obstacles.column_clearance());
     for (size_t i = 0; i < varied.size(); ++i) {
       const sim::ActorSpec& a = varied[i];
       if (!sim::has_lane(a)) {
@@ -133,7 +133,7 @@ int check_lanes(const std::string& path, int seeds,
       shifted += a.lane.bound() > 0.01;
       const double half_width = sim::lane_half_width(a);
       double widest = 0.0, written_clearance = 1e9, varied_clearance = 1e9;
-      for (const sim::LaneSample& s : sim::lane_samples(scenario.actors[i], a, obstacles)) {
+      for (const sim::LaneSample& s : sim::lane_samples(scenario.actors[i], a, obstacles.column_clearance())) {
         written_clearance = std::min(written_clearance, s.written_clearance);
         varied_clearance = std::min(varied_clearance, s.varied_clearance);
         const double shift = (s.varied - s.written).norm();
@@ -177,7 +177,7 @@ TEST(WorldSeed, PushersKeepTheirPathAndSittersTheirChair) {
     const sim::Scenario s = sim::load_scenario(scenario_path(name));
     for (uint64_t seed = 1; seed <= 4; ++seed) {
       const sim::StaticObstacles obstacles(sim::load_scene_layout(s.scene_path), seed);
-      const auto varied = sim::vary_actors(s.actors, seed, obstacles);
+      const auto varied = sim::vary_actors(s.actors, seed, obstacles.column_clearance());
       for (size_t i = 0; i < varied.size(); ++i) {
         const sim::ActorSpec &a = s.actors[i], &v = varied[i];
         if (sim::has_lane(a)) continue;

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "common/pose.h"
-#include "sim/actors/path.h"
+#include "sim/scenario/path.h"
 #include "sim/scenario/scenario.h"
 
 namespace depot::sim {

@@ -59,7 +59,7 @@ double lane_half_width(const ActorSpec& a) {
 }
 
 std::vector<LaneSample> lane_samples(const ActorSpec& written, const ActorSpec& varied,
-                                     const StaticObstacles& obstacles) {
+                                     const ColumnClearance& clearance) {
   const Path2D as_written = actor_path(written), as_varied = actor_path(varied);
   const std::vector<Eigen::Vector2d>& p = as_written.points();
   const std::vector<Eigen::Vector2d>& q = as_varied.points();
@@ -74,8 +74,8 @@ std::vector<LaneSample> lane_samples(const ActorSpec& written, const ActorSpec& 
       LaneSample s;
       s.written = p[i] + u * (p[i + 1] - p[i]);
       s.varied = q[i] + u * (q[i + 1] - q[i]);
-      s.written_clearance = obstacles.nearest_column(s.written, z_lo, z_hi).distance;
-      s.varied_clearance = obstacles.nearest_column(s.varied, z_lo, z_hi).distance;
+      s.written_clearance = clearance(s.written, z_lo, z_hi);
+      s.varied_clearance = clearance(s.varied, z_lo, z_hi);
       out.push_back(s);
     }
   }
@@ -83,7 +83,7 @@ std::vector<LaneSample> lane_samples(const ActorSpec& written, const ActorSpec& 
 }
 
 std::vector<ActorSpec> vary_actors(const std::vector<ActorSpec>& actors, uint64_t world_seed,
-                                   const StaticObstacles& obstacles) {
+                                   const ColumnClearance& clearance) {
   std::vector<ActorSpec> out = actors;
   for (ActorSpec& a : out) {
     const uint64_t key = name_hash(a.name);
@@ -115,7 +115,7 @@ std::vector<ActorSpec> vary_actors(const std::vector<ActorSpec>& actors, uint64_
     for (double factor : {1.0, -1.0, 0.5, -0.5, 0.25, -0.25}) {
       ActorSpec candidate = a;
       candidate.lane = scaled(drawn, factor);
-      if (keeps_clear(lane_samples(written, candidate, obstacles))) {
+      if (keeps_clear(lane_samples(written, candidate, clearance))) {
         a.lane = candidate.lane;
         break;
       }

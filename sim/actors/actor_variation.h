@@ -17,11 +17,13 @@
 //    per cent, idle-motion phase, the goods on a cart) unless `appearance` is
 //    written in the file.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "sim/scenario/scenario.h"
-#include "sim/scene/obstacles.h"
 
 namespace depot::sim {
 
@@ -33,8 +35,14 @@ constexpr double kActorClearance = 0.35;     // m, path centre to static geometr
 // standard libraries, and datasets must not).
 uint64_t name_hash(const std::string& name);
 
+// The horizontal distance (m, negative inside) from a body standing at `xy`
+// over heights z_lo..z_hi to the nearest static geometry: the scene's
+// (sim/scene/obstacles.h: StaticObstacles::column_clearance), which is built
+// above the actors and so handed down.
+using ColumnClearance = std::function<double(const Eigen::Vector2d& xy, double z_lo, double z_hi)>;
+
 std::vector<ActorSpec> vary_actors(const std::vector<ActorSpec>& actors, uint64_t world_seed,
-                                   const StaticObstacles& obstacles);
+                                   const ColumnClearance& clearance);
 
 // One point of an actor's path as written and as varied (the same point of
 // the smoothed path, shifted), with their clearances to static geometry at
@@ -46,7 +54,7 @@ struct LaneSample {
 // Samples every few centimetres along the path of `varied` (a walker, animal
 // or bird) and of the same actor as written (`written`).
 std::vector<LaneSample> lane_samples(const ActorSpec& written, const ActorSpec& varied,
-                                     const StaticObstacles& obstacles);
+                                     const ColumnClearance& clearance);
 
 // Whether an actor follows a path the world seed may shift (walk and fly).
 bool has_lane(const ActorSpec& actor);

@@ -3,7 +3,7 @@
 
 #include "sim/actors/actor.h"
 #include "sim/actors/human_rig.h"
-#include "sim/actors/path.h"
+#include "sim/scenario/path.h"
 
 namespace depot::sim {
 

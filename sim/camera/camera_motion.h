@@ -6,7 +6,7 @@
 
 #include "common/pose.h"
 #include "common/tum_io.h"
-#include "sim/actors/path.h"
+#include "sim/scenario/path.h"
 #include "sim/scenario/scenario.h"
 
 namespace depot::sim {

@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 
 #include "common/lens_model.h"
-#include "sim/actors/path.h"
+#include "sim/scenario/path.h"
 #include "sim/scenario/camera_cover.h"
 
 namespace depot::sim {

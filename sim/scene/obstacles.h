@@ -16,6 +16,7 @@
 
 #include "common/pose.h"
 #include "sim/actors/actor.h"
+#include "sim/actors/actor_variation.h"
 #include "sim/scene/scene_layout.h"
 
 namespace depot::sim {
@@ -35,6 +36,13 @@ class StaticObstacles {
   // z_lo to z_hi (an actor's body): horizontal distance where heights
   // overlap (exact for upright boxes and cylinders).
   Nearest nearest_column(const Eigen::Vector2d& xy, double z_lo, double z_hi) const;
+  // nearest_column's distance, as the actors' lane variation asks for it
+  // (valid while this object lives).
+  ColumnClearance column_clearance() const {
+    return [this](const Eigen::Vector2d& xy, double z_lo, double z_hi) {
+      return nearest_column(xy, z_lo, z_hi).distance;
+    };
+  }
 
   size_t size() const { return solids_.size(); }
 

@@ -108,7 +108,7 @@ SimulatedSequence::SimulatedSequence(const Scenario& scenario, GlBackend backend
   motion_ = std::make_unique<CameraMotion>(scenario_.motion, scenario_.seed, stamps_.front().first);
   enforce_camera_clearance(scenario_,
                            measure_camera_clearance(scenario_, obstacles, *motion_, stamps_));
-  scenario_.actors = vary_actors(scenario_.actors, scenario_.world_seed(), obstacles);
+  scenario_.actors = vary_actors(scenario_.actors, scenario_.world_seed(), obstacles.column_clearance());
   // A lens or non-square pixels: render a wider square-pixel canvas and
   // resample it (sim/sensor/lens.h); --ideal keeps the pixels, drops the lens.
   const LensDistortion lens = scenario_.sensor.ideal ? LensDistortion{} : scenario_.sensor.lens;

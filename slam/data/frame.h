@@ -5,7 +5,7 @@
 
 #include "common/pose.h"
 #include "slam/data/features.h"
-#include "slam/place/bow_vector.h"
+#include "slam/data/bow_vector.h"
 
 namespace depot::slam {
 

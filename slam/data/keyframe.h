@@ -9,7 +9,7 @@
 #include "slam/data/by_id.h"
 #include "slam/data/features.h"
 #include "slam/data/frame.h"
-#include "slam/place/bow_vector.h"
+#include "slam/data/bow_vector.h"
 
 namespace depot::slam {
 

@@ -15,7 +15,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "slam/place/bow_vector.h"
+#include "slam/data/bow_vector.h"
 
 namespace depot::slam {
 

@@ -1,6 +1,6 @@
 // Paths: a lane offset shifts the smoothed path sideways by at most its
 // bound, keeps a closed path closed, and none leaves the path as it was.
-#include "sim/actors/path.h"
+#include "sim/scenario/path.h"
 
 #include <gtest/gtest.h>
 

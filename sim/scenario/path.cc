@@ -1,4 +1,4 @@
-#include "sim/actors/path.h"
+#include "sim/scenario/path.h"
 
 #include <algorithm>
 #include <cmath>
