@@ -11,6 +11,8 @@
 #include "common/rng.h"
 #include "common/tum_io.h"
 #include "dataset/boxes.h"
+#include "dataset/calibration.h"
+#include "dataset/class_list.h"
 #include "dataset/dataset_files.h"
 #include "dataset/label_images.h"
 #include "sim/dataset/boxes.h"
@@ -206,9 +208,7 @@ void DatasetWriter::write_text_files() {
   dataset::write_object_poses(root.string(), scenario_.name, object_poses_);
   if (!exposures_.empty()) dataset::write_exposures(root.string(), scenario_.name, exposures_);
   dataset::write_boxes(root.string(), scenario_.name, boxes_);
-  std::string classes_txt;
-  for (const auto& n : classes_.yolo_names()) classes_txt += n + "\n";
-  write("classes.txt", classes_txt);
+  dataset::write_dataset_classes(root.string(), classes_.yolo_names());
   for (const auto& [stamp, content] : yolo_files_)
     write_text_file_atomic((root / "boxes_yolo" / (stamp + ".txt")).string(), content);
 
@@ -216,19 +216,20 @@ void DatasetWriter::write_text_files() {
   const SensorSpec& s = scenario_.sensor;
   // The lens an ideal sensor drops (sim/world/simulated_sequence.cc).
   const LensDistortion l = s.ideal ? LensDistortion{} : s.lens;
-  char calib[1024];
-  std::snprintf(
-      calib, sizeof(calib),
-      "# Intrinsics of the images: pinhole with OpenCV's radial-tangential distortion\n"
-      "# (k1 k2 p1 p2 k3, on normalised coordinates); depth and labels are registered\n"
-      "# to the colour camera and share its lens.\n"
-      "camera:\n  model: pinhole\n  width: %d\n  height: %d\n  fx: %.6f\n  fy: %.6f\n  cx: %.6f\n"
-      "  cy: %.6f\n  k1: %.9g\n  k2: %.9g\n  p1: %.9g\n  p2: %.9g\n  k3: %.9g\n"
-      "depth:\n  factor: %.1f  # PNG value per metre\n  min: %.3f\n  max: %.3f\n  model: %s\n"
-      "  baseline: %.4f\n",
-      c.width, c.height, c.f, c.focal_y(), c.cx, c.cy, l.k1, l.k2, l.p1, l.p2, l.k3, c.depth_factor,
-      s.ideal ? 0.0 : s.min_depth, s.max_depth, s.ideal ? "ideal" : "kinect", s.baseline);
-  std::string calibration = calib;
+  dataset::CameraCalibration camera;
+  camera.width = c.width;
+  camera.height = c.height;
+  camera.fx = c.f;
+  camera.fy = c.focal_y();
+  camera.cx = c.cx;
+  camera.cy = c.cy;
+  camera.lens = l;
+  camera.depth_factor = c.depth_factor;
+  camera.depth_min = s.ideal ? 0.0 : s.min_depth;
+  camera.depth_max = s.max_depth;
+  camera.depth_model = s.ideal ? "ideal" : "kinect";
+  camera.depth_baseline = s.baseline;
+  std::string calibration = dataset::calibration_text(camera);
   if (!s.ideal && (s.exposure > 0 || s.readout > 0)) {
     // Only where set, so datasets of an instant global shutter stay as
     // they were. Rows: sim/sensor/shutter.h.

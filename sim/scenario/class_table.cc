@@ -3,6 +3,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include "common/error.h"
+#include "common/yaml_fields.h"
+#include "common/yaml_file.h"
 
 namespace depot::sim {
 
@@ -19,21 +21,17 @@ const char* category_name(Category c) {
 }
 
 ClassTable ClassTable::load(const std::string& path) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    fail(path, "cannot open class table");
-  } catch (const YAML::Exception& e) {
-    fail(path, "line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
-  }
+  const YAML::Node root = load_yaml_file(path, "class table");
+  if (!root.IsMap() || !root["classes"] || !root["classes"].IsMap())
+    fail(path, "expected a map 'classes: {name: {...}}'");
+  const YamlSource source{path, {}};
   ClassTable table;
-  YAML::Node classes = root["classes"];
-  if (!classes || !classes.IsMap()) fail(path, "expected a map 'classes: {name: {...}}'");
-  for (const auto& entry : classes) {
+  for (const auto& entry : root["classes"]) {
     ObjectClass c;
-    c.name = entry.first.as<std::string>();
-    std::string cat = entry.second["category"].as<std::string>("static");
+    c.name = yaml_value<std::string>(entry.first, "class name", source);
+    const YamlFields fields(entry.second, source, "class '" + c.name + "'");
+    fields.allow_only({"category", "detectable"});
+    const std::string cat = fields.str("category", "static");
     if (cat == "dynamic") {
       c.category = Category::kDynamic;
     } else if (cat == "potentially_dynamic") {
@@ -41,10 +39,11 @@ ClassTable ClassTable::load(const std::string& path) {
     } else if (cat == "static") {
       c.category = Category::kStatic;
     } else {
-      fail(path, "class '" + c.name + "': unknown category '" + cat +
-                     "' (expected dynamic, potentially_dynamic or static)");
+      fail(fields.where(fields.node("category")),
+           "class '" + c.name + "': unknown category '" + printable(cat) +
+               "' (expected dynamic, potentially_dynamic or static)");
     }
-    c.detectable = entry.second["detectable"].as<bool>(false);
+    c.detectable = fields.flag("detectable", false);
     table.classes_.push_back(c);
   }
   return table;

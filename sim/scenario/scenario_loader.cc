@@ -13,6 +13,7 @@
 #include "common/config_path.h"
 #include "common/error.h"
 #include "common/image_size.h"
+#include "common/yaml_fields.h"
 #include "common/yaml_file.h"
 
 namespace fs = std::filesystem;
@@ -40,92 +41,16 @@ void scale_camera(CameraIntrinsics& c, int width) {
 
 namespace {
 
-// Typed access to a YAML map with file:line errors and unknown-key checks.
-// Where a scenario's values came from: a line of its file, or a --set
-// option (an override's value has no line of its own in the file).
-struct Source {
-  std::string file;
-  std::vector<std::pair<YAML::Node, std::string>> overrides;  // value node, "--set key=value"
+using Source = YamlSource;
 
-  std::string where(const YAML::Node& n) const {
-    for (const auto& [node, option] : overrides)
-      if (node.is(n)) return option;
-    // A map made by --set alone has no line either.
-    if (n.Mark().is_null()) return file;
-    return file + ":" + std::to_string(n.Mark().line + 1);
-  }
-};
-
-class Fields {
+// A scenario's maps (common/yaml_fields.h) with its two own kinds of field:
+// a ground path and a file that must exist.
+class Fields : public YamlFields {
  public:
-  Fields(const YAML::Node& node, const Source& source, const std::string& what)
-      : node_(node), source_(source), file_(source.file) {
-    if (!node.IsMap()) fail(where(node), what + " must be a map");
-  }
+  using YamlFields::YamlFields;
 
-  // A key this map lacks (its value came from a sensor profile or a
-  // default) is placed at the map itself.
-  std::string where(const YAML::Node& n) const { return source_.where(n ? n : node_); }
-  std::string where() const { return where(node_); }
-
-  void allow_only(std::initializer_list<const char*> keys) const {
-    std::set<std::string> ok(keys.begin(), keys.end());
-    for (const auto& kv : node_) {
-      if (!kv.first.IsScalar()) fail(where(kv.first), "a key must be a plain name");
-      const std::string key = kv.first.Scalar();
-      if (!ok.count(key)) {
-        std::string list;
-        for (const auto& k : keys) list += std::string(list.empty() ? "" : ", ") + k;
-        fail(where(kv.first),
-             "unknown key '" + printable(key) + "' (expected one of: " + list + ")");
-      }
-    }
-  }
-
-  bool has(const char* key) const { return static_cast<bool>(node_[key]); }
-  YAML::Node node(const char* key) const { return node_[key]; }
-
-  template <typename T>
-  T get(const char* key, const T& fallback) const {
-    YAML::Node n = node_[key];
-    if (!n) return fallback;
-    try {
-      return n.as<T>();
-    } catch (const YAML::Exception&) {
-      fail(where(n), "bad value for '" + std::string(key) + "'");
-    }
-  }
-  std::string str(const char* key, const std::string& fallback = "") const {
-    return get<std::string>(key, fallback);
-  }
-  double number(const char* key, double fallback, double lo, double hi) const {
-    double v = get<double>(key, fallback);
-    if (!std::isfinite(v) || v < lo || v > hi) {
-      fail(where(node_[key] ? node_[key] : node_),
-           "'" + std::string(key) + "' = " + std::to_string(v) + " is out of range [" +
-               std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    }
-    return v;
-  }
-  Eigen::Vector3d vec3(const char* key, const Eigen::Vector3d& fallback) const {
-    YAML::Node n = node_[key];
-    if (!n) return fallback;
-    auto v = get<std::vector<double>>(key, {});
-    if (v.size() != 3 ||
-        !std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }))
-      fail(where(n), "'" + std::string(key) + "' must be [x, y, z]");
-    return {v[0], v[1], v[2]};
-  }
-  Eigen::Vector2d vec2(const char* key, const Eigen::Vector2d& fallback) const {
-    YAML::Node n = node_[key];
-    if (!n) return fallback;
-    auto v = get<std::vector<double>>(key, {});
-    if (v.size() != 2 || !std::isfinite(v[0]) || !std::isfinite(v[1]))
-      fail(where(n), "'" + std::string(key) + "' must be [x, y]");
-    return {v[0], v[1]};
-  }
   std::vector<Eigen::Vector2d> path(const char* key) const {
-    YAML::Node n = node_[key];
+    YAML::Node n = node(key);
     std::vector<Eigen::Vector2d> out;
     if (!n) return out;
     if (!n.IsSequence()) fail(where(n), "'" + std::string(key) + "' must be a list of [x, y]");
@@ -145,10 +70,11 @@ class Fields {
   // A path relative to the scenario's folder (or to the shared data,
   // common/config_path.h), which must exist.
   std::string existing_file(const char* key) const {
-    YAML::Node n = node_[key];
+    YAML::Node n = node(key);
     if (!n) return "";
     const std::string value = str(key);
-    const std::string p = resolve_config_path(value, fs::path(file_).parent_path().string());
+    const std::string p =
+        resolve_config_path(value, fs::path(source().file).parent_path().string());
     std::error_code ec;
     if (!fs::is_regular_file(p, ec))
       fail(where(n), "file '" + value + "' not found (" + p +
@@ -161,11 +87,6 @@ class Fields {
                                                    : ""));
     return p;
   }
-
- private:
-  YAML::Node node_;
-  const Source& source_;
-  std::string file_;
 };
 
 const std::set<std::string> kMotionTypes = {"xyz",    "halfsphere", "rpy",

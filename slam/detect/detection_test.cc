@@ -2,8 +2,9 @@
 #include <gtest/gtest.h>
 
 #include "common/error.h"
-#include "slam/detect/class_names.h"
+#include "dataset/class_list.h"
 #include "slam/detect/detection.h"
+#include "slam/detect/detector_config.h"
 #include "slam/detect/nms.h"
 #include "slam/detect/test_support.h"
 
@@ -82,13 +83,13 @@ TEST(Nms, ThresholdIsStrictAndEmptyInputIsFine) {
 TEST(ClassNames, ReadsCocoNamesAndTrims) {
   test::TempDir dir;
   const std::string p = dir.write("a.names", "person\r\n  bicycle \ncar\n\n\n");
-  const std::vector<std::string> names = load_class_names(p);
+  const std::vector<std::string> names = dataset::load_class_names(p);
   ASSERT_EQ(names.size(), 3u);
   EXPECT_EQ(names[0], "person");
   EXPECT_EQ(names[1], "bicycle");
   EXPECT_EQ(names[2], "car");
   if (test::have_shared_data()) {
-    const auto coco = load_class_names(test::yolo_fastest_dir() + "/coco.names");
+    const auto coco = dataset::load_class_names(test::yolo_fastest_dir() + "/coco.names");
     ASSERT_EQ(coco.size(), 80u);
     EXPECT_EQ(coco[0], "person");
     EXPECT_EQ(coco[56], "chair");
@@ -100,7 +101,7 @@ TEST(ClassNames, ErrorsNameTheFile) {
   test::TempDir dir;
   const std::string missing = dir.file("missing.names");
   try {
-    load_class_names(missing);
+    dataset::load_class_names(missing);
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find(missing), std::string::npos) << e.what();
@@ -109,7 +110,7 @@ TEST(ClassNames, ErrorsNameTheFile) {
   EXPECT_THROW(
       {
         try {
-          load_class_names(empty);
+          dataset::load_class_names(empty);
         } catch (const Error& e) {
           EXPECT_NE(std::string(e.what()).find(empty), std::string::npos) << e.what();
           throw;
@@ -117,7 +118,7 @@ TEST(ClassNames, ErrorsNameTheFile) {
       },
       Error);
   const std::string gap = dir.write("gap.names", "person\n\ncar\n");
-  EXPECT_THROW(load_class_names(gap), Error);
+  EXPECT_THROW(dataset::load_class_names(gap), Error);
 }
 
 TEST(ClassNames, WantedClasses) {

@@ -6,8 +6,8 @@
 
 #include "common/config_path.h"
 #include "common/error.h"
+#include "common/yaml_fields.h"
 #include "common/yaml_file.h"
-#include "slam/detect/config_fields.h"
 
 namespace depot::slam {
 
@@ -25,8 +25,9 @@ DetectorConfig load_detector_config(const std::string& yaml_path) {
                                               "confidence", "nms",         "classes"};
   check_known_keys(root, known, yaml_path);
 
+  const YamlFields fields(root, yaml_path, "detector config");
   DetectorConfig c;
-  c.type = read_string(root, "type", yaml_path);
+  c.type = fields.str("type");
   const auto& types = dnn_detector_types();
   if (c.type.empty()) fail(yaml_path, "missing 'type' (yolov5, darknet or fastestdet)");
   if (std::find(types.begin(), types.end(), c.type) == types.end())
@@ -34,9 +35,9 @@ DetectorConfig load_detector_config(const std::string& yaml_path) {
                                                   "' (expected yolov5, darknet or fastestdet)");
 
   const std::string folder = folder_of(yaml_path);
-  c.model = resolve_config_path(read_string(root, "model", yaml_path), folder);
-  c.config = resolve_config_path(read_string(root, "config", yaml_path), folder);
-  c.names = resolve_config_path(read_string(root, "names", yaml_path), folder);
+  c.model = resolve_config_path(fields.str("model"), folder);
+  c.config = resolve_config_path(fields.str("config"), folder);
+  c.names = resolve_config_path(fields.str("names"), folder);
   if (c.model.empty()) fail(yaml_path, "missing 'model' (path of the model file)");
   if (c.names.empty()) fail(yaml_path, "missing 'names' (path of the class names file)");
   if (c.type == "darknet" && c.config.empty())
@@ -44,12 +45,12 @@ DetectorConfig load_detector_config(const std::string& yaml_path) {
   if (c.type != "darknet" && !c.config.empty())
     fail(yaml_where(yaml_path, root["config"]), "'config' is for type darknet only");
 
-  c.input_width = read_number<int>(root, "input_width", 0, 0, 4096, yaml_path);
-  c.input_height = read_number<int>(root, "input_height", 0, 0, 4096, yaml_path);
+  c.input_width = fields.number<int>("input_width", 0, 0, 4096);
+  c.input_height = fields.number<int>("input_height", 0, 0, 4096);
   if ((c.input_width == 0) != (c.input_height == 0))
     fail(yaml_path, "give both 'input_width' and 'input_height' or neither");
-  c.confidence = read_number<float>(root, "confidence", c.confidence, 0.0, 1.0, yaml_path);
-  c.nms = read_number<float>(root, "nms", c.nms, 0.0, 1.0, yaml_path);
+  c.confidence = fields.number<float>("confidence", c.confidence, 0.0, 1.0);
+  c.nms = fields.number<float>("nms", c.nms, 0.0, 1.0);
 
   if (const YAML::Node cls = root["classes"]) {
     if (!cls.IsSequence() && !cls.IsNull())
@@ -61,6 +62,21 @@ DetectorConfig load_detector_config(const std::string& yaml_path) {
     }
   }
   return c;
+}
+
+std::vector<bool> wanted_classes(const std::vector<std::string>& names,
+                                 const std::vector<std::string>& wanted,
+                                 const std::string& names_path) {
+  if (wanted.empty()) return std::vector<bool>(names.size(), true);
+  std::vector<bool> keep(names.size(), false);
+  for (const std::string& w : wanted) {
+    const auto it = std::find(names.begin(), names.end(), w);
+    if (it == names.end())
+      fail(names_path, "wanted class '" + w + "' is not one of the model's " +
+                           std::to_string(names.size()) + " classes");
+    keep[static_cast<size_t>(it - names.begin())] = true;
+  }
+  return keep;
 }
 
 }  // namespace depot::slam

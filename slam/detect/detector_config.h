@@ -37,4 +37,11 @@ const std::vector<std::string>& dnn_detector_types();
 // range. Model files themselves are checked by make_dnn_detector.
 DetectorConfig load_detector_config(const std::string& yaml_path);
 
+// Which of a model's class `names` to keep: all when `wanted` (the config's
+// `classes`) is empty, else exactly the listed ones. Throws depot::Error
+// "<names_path>: ..." for a wanted class that is not in `names`.
+std::vector<bool> wanted_classes(const std::vector<std::string>& names,
+                                 const std::vector<std::string>& wanted,
+                                 const std::string& names_path);
+
 }  // namespace depot::slam

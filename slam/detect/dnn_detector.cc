@@ -6,7 +6,7 @@
 
 #include "common/error.h"
 
-#include "slam/detect/class_names.h"
+#include "dataset/class_list.h"
 #include "slam/detect/dnn_model.h"
 #include "slam/detect/nms.h"
 
@@ -27,7 +27,7 @@ DnnDetector::DnnDetector(std::string kind, const DetectorConfig& config)
 
 void DnnDetector::load(cv::Size input) {
   input_ = input;
-  params_.names = load_class_names(config_.names);
+  params_.names = dataset::load_class_names(config_.names);
   params_.wanted = wanted_classes(params_.names, config_.classes, config_.names);
   net_ = load_net();
   const cv::Mat grey(input_, CV_8UC3, cv::Scalar::all(114));

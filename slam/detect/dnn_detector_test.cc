@@ -12,7 +12,7 @@
 
 #include "common/error.h"
 #include "common/testing/error_of.h"
-#include "slam/detect/class_names.h"
+#include "dataset/class_list.h"
 #include "slam/detect/detector_config.h"
 #include "slam/detect/detector_factory.h"
 #include "slam/detect/nms.h"
@@ -204,7 +204,8 @@ TEST(DnnDetectorErrors, CorruptModelFiles) {
 TEST(DnnDetectorErrors, NamesFileWithWrongClassCount) {
   DEPOT_REQUIRE_SHARED_DATA();
   test::TempDir dir;
-  std::vector<std::string> names = load_class_names(test::yolo_fastest_dir() + "/coco.names");
+  std::vector<std::string> names =
+      dataset::load_class_names(test::yolo_fastest_dir() + "/coco.names");
   names.pop_back();
   std::string text;
   for (const auto& n : names) text += n + "\n";

@@ -8,8 +8,8 @@
 
 #include "common/config_path.h"
 #include "common/error.h"
+#include "common/yaml_fields.h"
 #include "common/yaml_file.h"
-#include "slam/detect/config_fields.h"
 #include "slam/detect/decode_params.h"
 #include "slam/detect/dnn_model.h"
 #include "slam/detect/letterbox.h"
@@ -18,13 +18,13 @@ namespace depot::slam {
 namespace {
 
 // One of two words; `fallback` when absent.
-bool read_choice(const YAML::Node& root, const char* key, const char* yes, const char* no,
-                 bool fallback, const std::string& path) {
-  const std::string v = read_string(root, key, path);
+bool read_choice(const YamlFields& fields, const char* key, const char* yes, const char* no,
+                 bool fallback) {
+  const std::string v = fields.str(key);
   if (v.empty()) return fallback;
   if (v != yes && v != no)
-    fail(yaml_where(path, root[key]), std::string("'") + key + "' must be " + yes + " or " + no +
-                                          ", not '" + printable(v) + "'");
+    fail(fields.where(fields.node(key)), std::string("'") + key + "' must be " + yes + " or " + no +
+                                             ", not '" + printable(v) + "'");
   return v == yes;
 }
 
@@ -57,16 +57,17 @@ SegmenterConfig load_segmenter_config(const std::string& path) {
                    {"model", "input_width", "input_height", "layout", "channels", "input_range",
                     "resize", "output", "threshold"},
                    path);
+  const YamlFields fields(root, path, "segmenter config");
   SegmenterConfig c;
-  c.model = resolve_config_path(read_string(root, "model", path), folder_of(path));
+  c.model = resolve_config_path(fields.str("model"), folder_of(path));
   if (c.model.empty()) fail(path, "missing 'model' (path of the ONNX model file)");
-  c.input_width = read_number<int>(root, "input_width", c.input_width, 8, 4096, path);
-  c.input_height = read_number<int>(root, "input_height", c.input_height, 8, 4096, path);
-  c.nhwc = read_choice(root, "layout", "nhwc", "nchw", c.nhwc, path);
-  c.rgb = read_choice(root, "channels", "rgb", "bgr", c.rgb, path);
-  c.letterbox = read_choice(root, "resize", "letterbox", "stretch", c.letterbox, path);
-  c.logit = read_choice(root, "output", "logit", "probability", c.logit, path);
-  c.threshold = read_number<float>(root, "threshold", c.threshold, 0.0, 1.0, path);
+  c.input_width = fields.number<int>("input_width", c.input_width, 8, 4096);
+  c.input_height = fields.number<int>("input_height", c.input_height, 8, 4096);
+  c.nhwc = read_choice(fields, "layout", "nhwc", "nchw", c.nhwc);
+  c.rgb = read_choice(fields, "channels", "rgb", "bgr", c.rgb);
+  c.letterbox = read_choice(fields, "resize", "letterbox", "stretch", c.letterbox);
+  c.logit = read_choice(fields, "output", "logit", "probability", c.logit);
+  c.threshold = fields.number<float>("threshold", c.threshold, 0.0, 1.0);
   if (const YAML::Node range = root["input_range"]) {
     try {
       if (!range.IsSequence() || range.size() != 2) throw YAML::Exception(range.Mark(), "");

@@ -37,7 +37,7 @@ TEST(SegmenterConfig, BadFilesNameFileAndLine) {
       {"model: m.onnx\nlayout: nwhc\n", ":2: 'layout' must be nhwc or nchw, not 'nwhc'"},
       {"model: m.onnx\ninput_range: [1, 0]\n", ":2: 'input_range' must have lo < hi"},
       {"model: m.onnx\ninput_range: 1\n", ":2: 'input_range' must be two numbers [lo, hi]"},
-      {"model: m.onnx\nthreshold: 2\n", ":2: 'threshold' must be in [0.000000, 1.000000]"},
+      {"model: m.onnx\nthreshold: 2\n", ":2: 'threshold' = 2 is out of range [0, 1]"},
       {"model: m.onnx\nsize: 3\n", ":2: unknown key 'size'"},
   };
   int i = 0;

@@ -3,32 +3,16 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
-#include <sstream>
 
 #include "common/error.h"
+#include "common/yaml_fields.h"
 #include "common/yaml_file.h"
 
 namespace depot::slam {
 namespace {
 
 std::string at(const std::string& where, const YAML::Node& n) {
-  const YAML::Mark m = n.Mark();
-  return m.line >= 0 ? where + ":" + std::to_string(m.line + 1) : where;
-}
-
-template <typename T>
-T read(const YAML::Node& value, const std::string& key, const std::string& where) {
-  try {
-    return value.as<T>();
-  } catch (const YAML::Exception&) {
-    fail(at(where, value), "bad value for '" + key + "'");
-  }
-}
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
+  return YamlSource{where, {}}.where(n);
 }
 
 // The real-valued fields and their ranges: [lo, hi], or (lo, hi] when
@@ -62,8 +46,9 @@ const DoubleField kDoubles[] = {
 void check(const DoubleField& f, double v, const std::string& where) {
   const bool low = f.open_lo ? v <= f.lo : v < f.lo;
   if (!std::isfinite(v) || low || v > f.hi)
-    fail(where, std::string("'") + f.key + "' = " + number(v) + " is outside " +
-                    (f.open_lo ? "(" : "[") + number(f.lo) + ", " + number(f.hi) + "]");
+    fail(where, std::string("'") + f.key + "' = " + shortest_number(v) + " is outside " +
+                    (f.open_lo ? "(" : "[") + shortest_number(f.lo) + ", " + shortest_number(f.hi) +
+                    "]");
 }
 
 void check_latency(int latency, const std::string& where) {
@@ -88,8 +73,8 @@ void check_class_rates(const char* key, const std::map<std::string, double>& rat
   for (const auto& [cls, rate] : rates) {
     if (cls.empty()) fail(where, std::string("'") + key + "' has an empty class name");
     if (!std::isfinite(rate) || rate < 0 || rate > 1)
-      fail(where,
-           std::string("'") + key + "' of '" + cls + "' = " + number(rate) + " is outside [0, 1]");
+      fail(where, std::string("'") + key + "' of '" + cls + "' = " + shortest_number(rate) +
+                      " is outside [0, 1]");
   }
 }
 
@@ -100,9 +85,10 @@ void read_class_rates(const char* key, const YAML::Node& v, const std::string& w
     fail(at(where, v), std::string("'") + key + "' must be a map: class -> probability");
   rates.clear();
   if (!v.IsMap()) return;
+  const YamlSource source{where, {}};
   for (const auto& entry : v) {
-    const std::string cls = read<std::string>(entry.first, key, where);
-    const double rate = read<double>(entry.second, std::string(key) + ": " + cls, where);
+    const std::string cls = yaml_value<std::string>(entry.first, key, source);
+    const double rate = yaml_value<double>(entry.second, std::string(key) + ": " + cls, source);
     check_class_rates(key, {{cls, rate}}, at(where, entry.second));
     rates[cls] = rate;
   }
@@ -111,12 +97,12 @@ void read_class_rates(const char* key, const YAML::Node& v, const std::string& w
 // Checks between fields, once all are read.
 void check_consistency(const SimDetectorConfig& c, const std::string& where) {
   if (c.min_confidence > c.max_confidence)
-    fail(where, "'min_confidence' (" + number(c.min_confidence) + ") exceeds 'max_confidence' (" +
-                    number(c.max_confidence) + ")");
+    fail(where, "'min_confidence' (" + shortest_number(c.min_confidence) +
+                    ") exceeds 'max_confidence' (" + shortest_number(c.max_confidence) + ")");
   if (c.min_confidence > c.false_positive_max_confidence)
-    fail(where, "'min_confidence' (" + number(c.min_confidence) +
+    fail(where, "'min_confidence' (" + shortest_number(c.min_confidence) +
                     ") exceeds 'false_positive_max_confidence' (" +
-                    number(c.false_positive_max_confidence) + ")");
+                    shortest_number(c.false_positive_max_confidence) + ")");
 }
 
 }  // namespace
@@ -135,6 +121,7 @@ SimDetectorConfig load_sim_detector_config(const YAML::Node& node, const std::st
   SimDetectorConfig c = defaults;
   if (!node || node.IsNull()) return c;
   if (!node.IsMap()) fail(at(where, node), "the simulated detector config must be a YAML map");
+  const YamlSource source{where, {}};
   bool sets_miss_rate = false, sets_class_miss_rate = false;
   bool sets_confusion = false, sets_class_confusion_rate = false;
   for (const auto& kv : node) {
@@ -147,11 +134,11 @@ SimDetectorConfig load_sim_detector_config(const YAML::Node& node, const std::st
     const YAML::Node& v = kv.second;
     const std::string here = at(where, v);
     if (key == "seed") {
-      c.seed = read<uint64_t>(v, key, where);
+      c.seed = yaml_value<uint64_t>(v, key, source);
     } else if (key == "perfect") {
-      c.perfect = read<bool>(v, key, where);
+      c.perfect = yaml_value<bool>(v, key, source);
     } else if (key == "latency_frames") {
-      c.latency_frames = read<int>(v, key, where);
+      c.latency_frames = yaml_value<int>(v, key, source);
       check_latency(c.latency_frames, here);
     } else if (key == "calibration") {
       // The measurement the values came from: for people, not checked.
@@ -166,11 +153,11 @@ SimDetectorConfig load_sim_detector_config(const YAML::Node& node, const std::st
       c.confusions.clear();
       if (v.IsMap()) {
         for (const auto& entry : v) {
-          const std::string cls = read<std::string>(entry.first, key, where);
+          const std::string cls = yaml_value<std::string>(entry.first, key, source);
           c.confusions[cls] =
               entry.second.IsScalar()
-                  ? std::vector<std::string>{read<std::string>(entry.second, key, where)}
-                  : read<std::vector<std::string>>(entry.second, key + ": " + cls, where);
+                  ? std::vector<std::string>{yaml_value<std::string>(entry.second, key, source)}
+                  : yaml_value<std::vector<std::string>>(entry.second, key + ": " + cls, source);
         }
       }
       check_confusions(c.confusions, here);
@@ -179,7 +166,7 @@ SimDetectorConfig load_sim_detector_config(const YAML::Node& node, const std::st
       for (const DoubleField& d : kDoubles)
         if (key == d.key) f = &d;
       if (!f) fail(at(where, kv.first), "unknown key '" + printable(key) + "'");
-      c.*f->field = read<double>(v, key, where);
+      c.*f->field = yaml_value<double>(v, key, source);
       check(*f, c.*f->field, here);
     }
   }

@@ -1,17 +1,15 @@
 #include "slam/detect/truth_boxes.h"
 
-#include <yaml-cpp/yaml.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
 #include "common/error.h"
 #include "common/tum_io.h"
-#include "common/yaml_file.h"
 #include "dataset/boxes.h"
+#include "dataset/calibration.h"
+#include "dataset/class_list.h"
 #include "dataset/dataset_files.h"
-#include "slam/detect/class_names.h"
 
 namespace depot::slam {
 namespace {
@@ -20,32 +18,6 @@ constexpr double kMatchTolerance = 1e-4;  // s
 
 std::string join(const std::string& dir, const char* name) {
   return (std::filesystem::path(dir) / name).string();
-}
-
-cv::Size read_image_size(const std::string& path) {
-  YAML::Node root = load_yaml_file(path, "file (the dataset's camera calibration)");
-  const YAML::Node cam = root["camera"];
-  if (!cam || !cam["width"] || !cam["height"]) fail(path, "no camera: width/height");
-  cv::Size size;
-  try {
-    size = cv::Size(cam["width"].as<int>(), cam["height"].as<int>());
-  } catch (const YAML::Exception&) {
-    fail(path, "camera width/height are not integers");
-  }
-  if (size.width <= 0 || size.height <= 0 || size.width > 100000 || size.height > 100000)
-    fail(path,
-         "invalid image size " + std::to_string(size.width) + "x" + std::to_string(size.height));
-  return size;
-}
-
-std::vector<std::string> read_classes(const std::string& path) {
-  if (!std::filesystem::exists(path)) fail(path, "missing (the detectable classes, one a line)");
-  std::vector<std::string> classes = load_class_names(path);
-  for (size_t i = 0; i < classes.size(); ++i)
-    if (std::find(classes.begin(), classes.begin() + static_cast<long>(i), classes[i]) !=
-        classes.begin() + static_cast<long>(i))
-      fail(path, "class '" + classes[i] + "' is listed twice");
-  return classes;
 }
 
 }  // namespace
@@ -68,7 +40,9 @@ long nearest_timestamp(const std::vector<double>& stamps, double t) {
 DatasetBoxes read_dataset_boxes(const std::string& dir) {
   if (!std::filesystem::is_directory(dir)) fail(dir, "not a dataset folder");
   DatasetBoxes d;
-  d.image_size = read_image_size(join(dir, "calibration.yaml"));
+  const dataset::CameraCalibration camera =
+      dataset::read_calibration(join(dir, "calibration.yaml"));
+  d.image_size = cv::Size(camera.width, camera.height);
   const std::string rgb_path = join(dir, "rgb.txt");
   for (const StampedFile& f : read_file_list(rgb_path)) {
     d.timestamps.push_back(f.timestamp);
@@ -78,7 +52,7 @@ DatasetBoxes read_dataset_boxes(const std::string& dir) {
   if (!std::is_sorted(d.timestamps.begin(), d.timestamps.end()))
     fail(rgb_path, "timestamps are not in increasing order");
   d.frames.resize(d.timestamps.size());
-  d.classes = read_classes(join(dir, "classes.txt"));
+  d.classes = dataset::read_dataset_classes(dir);
 
   // boxes.txt as the dataset library reads it; here the checks against the
   // other files: a frame of rgb.txt, a class of classes.txt, inside the image.

@@ -1,7 +1,6 @@
 #include "tests/support/dataset_reader.h"
 
 #include <unistd.h>
-#include <yaml-cpp/yaml.h>
 
 #include <array>
 #include <atomic>
@@ -16,6 +15,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "common/error.h"
+#include "dataset/calibration.h"
 #include "dataset/dataset_files.h"
 #include "dataset/label_images.h"
 #include "dataset/object_poses.h"
@@ -49,14 +49,7 @@ const ObjectInfo& Dataset::object(const std::string& name) const {
 Dataset read_dataset(const std::string& root) {
   Dataset d;
   d.root = root;
-  YAML::Node calib = YAML::LoadFile(root + "/calibration.yaml");
-  d.calibration.width = calib["camera"]["width"].as<int>();
-  d.calibration.height = calib["camera"]["height"].as<int>();
-  d.calibration.fx = calib["camera"]["fx"].as<double>();
-  d.calibration.fy = calib["camera"]["fy"].as<double>();
-  d.calibration.cx = calib["camera"]["cx"].as<double>();
-  d.calibration.cy = calib["camera"]["cy"].as<double>();
-  d.calibration.depth_factor = calib["depth"]["factor"].as<double>();
+  d.calibration = dataset::read_calibration(root + "/calibration.yaml");
   d.frames = read_associations(root + "/associations.txt");
   d.groundtruth = read_tum_trajectory(root + "/groundtruth.txt");
   d.labels = dataset::read_label_list(root);

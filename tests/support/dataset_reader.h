@@ -11,14 +11,12 @@
 
 #include "common/pose.h"
 #include "common/tum_io.h"
+#include "dataset/calibration.h"
 #include "dataset/objects.h"
 
 namespace depot::test {
 
-struct Calibration {
-  int width = 0, height = 0;
-  double fx = 0, fy = 0, cx = 0, cy = 0, depth_factor = 0;
-};
+using Calibration = dataset::CameraCalibration;
 
 using ObjectInfo = dataset::ObjectRecord;
 

@@ -1,11 +1,14 @@
-#include "slam/detect/class_names.h"
+#include "dataset/class_list.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 
 #include "common/error.h"
+#include "common/tum_io.h"
+#include "dataset/dataset_files.h"
 
-namespace depot::slam {
+namespace depot::dataset {
 namespace {
 
 std::string trim(const std::string& s) {
@@ -39,19 +42,21 @@ std::vector<std::string> load_class_names(const std::string& path) {
   return names;
 }
 
-std::vector<bool> wanted_classes(const std::vector<std::string>& names,
-                                 const std::vector<std::string>& wanted,
-                                 const std::string& names_path) {
-  if (wanted.empty()) return std::vector<bool>(names.size(), true);
-  std::vector<bool> keep(names.size(), false);
-  for (const std::string& w : wanted) {
-    const auto it = std::find(names.begin(), names.end(), w);
-    if (it == names.end())
-      fail(names_path, "wanted class '" + w + "' is not one of the model's " +
-                           std::to_string(names.size()) + " classes");
-    keep[static_cast<size_t>(it - names.begin())] = true;
-  }
-  return keep;
+std::vector<std::string> read_dataset_classes(const std::string& dataset_dir) {
+  const std::string path = dataset_file(dataset_dir, kClassesFile);
+  if (!std::filesystem::exists(path)) fail(path, "missing (the detectable classes, one a line)");
+  std::vector<std::string> classes = load_class_names(path);
+  for (size_t i = 0; i < classes.size(); ++i)
+    if (std::find(classes.begin(), classes.begin() + static_cast<long>(i), classes[i]) !=
+        classes.begin() + static_cast<long>(i))
+      fail(path, "class '" + classes[i] + "' is listed twice");
+  return classes;
 }
 
-}  // namespace depot::slam
+void write_dataset_classes(const std::string& dataset_dir, const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& n : names) text += n + "\n";
+  write_text_file_atomic(dataset_file(dataset_dir, kClassesFile), text);
+}
+
+}  // namespace depot::dataset

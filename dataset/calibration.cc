@@ -1,0 +1,76 @@
+#include "dataset/calibration.h"
+
+#include <iomanip>
+#include <sstream>
+
+#include "common/error.h"
+#include "common/image_size.h"
+#include "common/yaml_fields.h"
+#include "common/yaml_file.h"
+
+namespace depot::dataset {
+
+CameraCalibration read_camera_sections(const YAML::Node& root, const std::string& path,
+                                       const CameraCalibration& defaults) {
+  CameraCalibration c = defaults;
+  const YamlFields cam(root["camera"], path, "camera");
+  c.width = cam.number<int>("width", c.width, kMinImageSide, kMaxImageSide);
+  c.height = cam.number<int>("height", c.height, kMinImageSide, kMaxImageSide);
+  c.fx = cam.number("fx", c.fx, 1, 1e5);
+  c.fy = cam.number("fy", c.fy, 1, 1e5);
+  c.cx = cam.number("cx", c.cx, 0, 8192);
+  c.cy = cam.number("cy", c.cy, 0, 8192);
+  c.lens.k1 = cam.number("k1", c.lens.k1, -10, 10);
+  c.lens.k2 = cam.number("k2", c.lens.k2, -10, 10);
+  c.lens.p1 = cam.number("p1", c.lens.p1, -1, 1);
+  c.lens.p2 = cam.number("p2", c.lens.p2, -1, 1);
+  c.lens.k3 = cam.number("k3", c.lens.k3, -10, 10);
+  // Absent, the baseline keeps the defaults' bf under the new fx.
+  c.baseline = cam.number("baseline", defaults.bf / c.fx, 0.001, 1.0);
+  c.bf = c.baseline * c.fx;
+  const YamlFields depth(root["depth"], path, "depth");
+  c.depth_factor = depth.number("factor", c.depth_factor, 1e-3, 1e6);
+  c.close_baselines = depth.number("close_baselines", c.close_baselines, 1, 1000);
+  return c;
+}
+
+CameraCalibration read_calibration(const std::string& path) {
+  const YAML::Node root = load_yaml_file(path, "file (the dataset's camera calibration)");
+  if (!root.IsMap() || !root["camera"] || !root["camera"].IsMap() || !root["camera"]["width"] ||
+      !root["camera"]["height"])
+    fail(path, "no camera: width/height");
+  return read_camera_sections(root, path);
+}
+
+std::string calibration_text(const CameraCalibration& c) {
+  std::ostringstream text;
+  const auto fixed = [&text](int digits, double v) -> std::ostringstream& {
+    text << std::fixed << std::setprecision(digits) << v;
+    return text;
+  };
+  const auto general = [&text](double v) -> std::ostringstream& {
+    text << std::defaultfloat << std::setprecision(9) << v;
+    return text;
+  };
+  text << "# Intrinsics of the images: pinhole with OpenCV's radial-tangential distortion\n"
+          "# (k1 k2 p1 p2 k3, on normalised coordinates); depth and labels are registered\n"
+          "# to the colour camera and share its lens.\n"
+          "camera:\n  model: pinhole\n  width: "
+       << c.width << "\n  height: " << c.height << "\n  fx: ";
+  fixed(6, c.fx) << "\n  fy: ";
+  fixed(6, c.fy) << "\n  cx: ";
+  fixed(6, c.cx) << "\n  cy: ";
+  fixed(6, c.cy) << "\n  k1: ";
+  general(c.lens.k1) << "\n  k2: ";
+  general(c.lens.k2) << "\n  p1: ";
+  general(c.lens.p1) << "\n  p2: ";
+  general(c.lens.p2) << "\n  k3: ";
+  general(c.lens.k3) << "\ndepth:\n  factor: ";
+  fixed(1, c.depth_factor) << "  # PNG value per metre\n  min: ";
+  fixed(3, c.depth_min) << "\n  max: ";
+  fixed(3, c.depth_max) << "\n  model: " << c.depth_model << "\n  baseline: ";
+  fixed(4, c.depth_baseline) << "\n";
+  return text.str();
+}
+
+}  // namespace depot::dataset
