@@ -10,6 +10,7 @@
 #include "common/tum_io.h"
 #include "common/yaml_overrides.h"
 #include "slam/io/frame_states_file.h"
+#include "slam/reject/rejection_settings.h"
 #include "tools/depot/cli_errors.h"
 #include "tools/depot/commands.h"
 #include "tools/depot/detector_options.h"
@@ -22,6 +23,14 @@ namespace fs = std::filesystem;
 
 namespace depot::cli {
 namespace {
+
+// A rejection setting of the table (slam/reject/rejection_settings.h) that a
+// flag of its own sets.
+const slam::RejectionSetting& setting(const char* key) {
+  const slam::RejectionSetting* s = slam::find_rejection_setting(key);
+  if (!s) throw std::logic_error(std::string("no rejection setting ") + key);
+  return *s;
+}
 
 // Options a mode does not use are refused rather than silently ignored.
 void check_options_used_by_mode(const std::string& mode, const CLI::App& cmd) {
@@ -41,10 +50,10 @@ void check_options_used_by_mode(const std::string& mode, const CLI::App& cmd) {
       {"--rejection-set", m == slam::RejectionMode::kFull || m == slam::RejectionMode::kMasked},
       {"--keypoints", m != slam::RejectionMode::kOrb},
       {"--overlays", m != slam::RejectionMode::kOrb},
-      {"--background-margin", m == slam::RejectionMode::kFull},
-      {"--ego-flow", m == slam::RejectionMode::kFull || m == slam::RejectionMode::kMasked},
-      {"--test-static", m == slam::RejectionMode::kFull || m == slam::RejectionMode::kMasked},
-      {"--person-mask", m == slam::RejectionMode::kMasked},
+      {"--background-margin", setting("background_margin").acts_in(m)},
+      {"--ego-flow", setting("ego_flow").acts_in(m)},
+      {"--test-static", setting("test_static").acts_in(m)},
+      {"--person-mask", setting("person_mask").acts_in(m)},
       {"--segmenter", m == slam::RejectionMode::kMasked}};
   for (const auto& o : options)
     if (!o.used && cmd.count(o.option))
@@ -278,20 +287,16 @@ void add_rejection_options(CLI::App* cmd, runner::RunOptions& o) {
       "Change a simulated-detector key, e.g. --detector-set miss_rate=0.2 (repeatable)");
   cmd->add_option("--settings", o.settings, "Settings YAML")
       ->default_str("the dataset's calibration.yaml");
-  cmd->add_option("--background-margin", o.rejection.background_depth_margin,
-                  "Our extension of full: boxed points without depth, or this far (m) behind a "
-                  "dynamic box's object, are background and go to P (0 = the paper exactly)")
-      ->check(CLI::Range(0.0, 10.0));
-  cmd->add_flag(
-      "--ego-flow", o.rejection.ego_motion_flow,
-      "Our extension of full and masked: test flow against the camera's motion fitted to P (by "
-      "PnP on depth) instead of P's mean flow");
-  cmd->add_flag("--test-static", o.rejection.test_static_points,
-                "Our extension of full and masked: apply the flow test to P's points too");
+  const slam::RejectionSetting& margin = setting("background_margin");
+  cmd->add_option("--background-margin", margin.real(o.rejection), margin.help)
+      ->check(CLI::Range(margin.lo, margin.hi));
+  cmd->add_flag("--ego-flow", setting("ego_flow").flag(o.rejection), setting("ego_flow").help);
+  cmd->add_flag("--test-static", setting("test_static").flag(o.rejection),
+                setting("test_static").help);
   cmd->add_option_function<std::string>(
          "--person-mask",
          [&o](const std::string& v) { o.rejection.person_mask = slam::parse_person_mask(v); },
-         "masked: person masks from depth, a person segmenter, or both")
+         setting("person_mask").help)
       ->check(CLI::IsMember({"depth", "segmentation", "both"}))
       ->default_str("depth");
   cmd->add_option("--segmenter", o.segmenter, "masked: person segmenter YAML")
@@ -300,12 +305,14 @@ void add_rejection_options(CLI::App* cmd, runner::RunOptions& o) {
       "--rejection-set",
       [&o](const std::vector<std::string>& texts) {
         for (const auto& t : texts)
-          runner::apply_rejection_setting(o, parse_yaml_override(t, "--rejection-set"),
-                                          "--rejection-set " + t);
+          slam::apply_rejection_setting(o.rejection, parse_yaml_override(t, "--rejection-set"),
+                                        "--rejection-set " + t);
       },
       "Change a rejection setting as a sweep's rejection.KEY, e.g. --rejection-set "
       "mask.extent=0.8, or motion=true for masked to reject movers no detector names "
-      "(repeatable; keys in tools/runner/slam_runner.h)");
+      "(repeatable; keys: " +
+          slam::rejection_setting_keys() +
+          "; each explained in slam/reject/rejection_settings.cc)");
   cmd->add_option_function<std::string>(
          "--mapping", [&o](const std::string& v) { o.sync = v == "sync"; },
          "Local mapping: threaded (its own thread, as ORB-SLAM2; faster, not reproducible) or "

@@ -21,6 +21,7 @@
 #include "sim/scenario/scenario_loader.h"
 #include "slam/detect/sim_detector_config.h"
 #include "slam/io/frame_states_file.h"
+#include "slam/reject/rejection_settings.h"
 #include "tools/runner/slam_runner.h"
 #include "tools/system/system_run.h"
 
@@ -131,7 +132,8 @@ void check_sweep_inputs(const SweepPlan& plan) {
         cell.label + " (detector settings)", runner::sim_detector_config(runner::RunOptions{}));
     runner::RunOptions options;
     for (const auto& s : cell_overrides(plan, cell, ParameterTarget::kRejection))
-      runner::apply_rejection_setting(options, s, cell.label + " (rejection." + s.key + ")");
+      slam::apply_rejection_setting(options.rejection, s,
+                                    cell.label + " (rejection." + s.key + ")");
   }
 }
 
@@ -243,7 +245,7 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
   options.detector_seed = static_cast<uint64_t>(job.seed);
   options.detector_overrides = cell_overrides(plan, cell, ParameterTarget::kDetector);
   for (const auto& setting : cell_overrides(plan, cell, ParameterTarget::kRejection))
-    runner::apply_rejection_setting(options, setting, "rejection." + setting.key);
+    slam::apply_rejection_setting(options.rejection, setting, "rejection." + setting.key);
   options.stats_csv = (fs::path(out.path()) / "stats.csv").string();
   try {
     const runner::RunSummary s = runner::run_sequence(options);

@@ -8,6 +8,7 @@
 #include "common/error.h"
 #include "common/tum_io.h"
 #include "slam/reject/rejection_filter.h"
+#include "slam/reject/rejection_settings.h"
 #include "tools/system/system_spec.h"
 
 namespace fs = std::filesystem;
@@ -32,13 +33,11 @@ bool parameter_affects_mode(const ParameterKey& parameter, const std::string& mo
     case ParameterTarget::kDetector:
       return slam::mode_uses_detector(m);
     case ParameterTarget::kRejection: {
-      // The object masks' own keys reach masked alone, the depth split of
-      // boxes full alone; the flow test's extensions reach both.
-      const std::string& k = parameter.key;
-      const bool masked_only =
-          k.rfind("mask.", 0) == 0 || k.rfind("tracking.", 0) == 0 || k == "person_mask";
-      if (k == "background_margin") return m == slam::RejectionMode::kFull;  // box splitting
-      return m == slam::RejectionMode::kMasked || (!masked_only && m == slam::RejectionMode::kFull);
+      // The modes the setting acts in (slam/reject/rejection_settings.h);
+      // sweeps check every key before they plan.
+      const slam::RejectionSetting* setting = slam::find_rejection_setting(parameter.key);
+      return setting ? setting->acts_in(m)
+                     : m == slam::RejectionMode::kFull || m == slam::RejectionMode::kMasked;
     }
   }
   return true;

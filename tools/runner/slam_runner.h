@@ -78,26 +78,6 @@ struct RunOptions {
   std::function<void(slam::System& system, const slam::TumSequence& sequence)> after_run;
 };
 
-// Sets one rejection option by name, as a sweep's "rejection.KEY=VALUE":
-// background_margin (m), ego_flow (bool), test_static (bool), person_mask
-// (depth | segmentation | both), and for masked mask.grow, mask.extent (m),
-// mask.edge_step (m), mask.edge_step_per_m, mask.stride (px), mask.reach,
-// mask.plane (bool: support-plane removal), mask.top_min_share (0 = no
-// occluder test), mask.max_spill (the occluded object's spill past its box),
-// mask.max_occluder_gap (m, how far behind its occluder the object may be),
-// tracking.max_missed (frames), tracking.max_missed_seen (frames, while the
-// carried object is still found at its depth), tracking.min_hits (detections before a
-// missed box is carried), tracking.min_iou, still.max_moving (the share of
-// a dynamic object's keypoints failing the flow test below which it is
-// still; 0 = off), still.min_points, and for masked's movers without a
-// detection (slam/reject/motion_objects.h) motion (bool), motion.first_sight
-// (bool), motion.min_seeds, motion.link_px, motion.link_depth (m),
-// motion.link_depth_per_m, motion.min_moving_share, motion.grow,
-// motion.max_frame_moving_share, and ego.threshold (px at 640). Throws
-// Error("<where>: ...") for an unknown key or a bad value.
-void apply_rejection_setting(RunOptions& options, const YamlOverride& setting,
-                             const std::string& where);
-
 // The problem run_sequence() names when no frame got a pose (an outcome a
 // sweep records, not a crash).
 inline constexpr const char* kNoFrameTracked = "no frame tracked";
