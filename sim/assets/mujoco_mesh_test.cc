@@ -13,6 +13,7 @@
 #include "common/testing/error_of.h"
 #include "sim/assets/skinning.h"
 #include "sim/assets/testing/asset_fixtures.h"
+#include "sim/assets/testing/cpu_skinning.h"
 #include "sim/render/gl_context.h"
 
 namespace depot::sim {
@@ -168,10 +169,10 @@ TEST(MujocoMesh, WrittenVerticesFollowTheGeomFrame) {
             Eigen::Quaterniond(Eigen::AngleAxisd(-kPi / 3, Eigen::Vector3d::UnitY())));
   std::vector<Eigen::Affine3d> globals, matrices;
   bone_globals(m.skeleton, pose, globals);
-  skinning_matrices(m.skeleton, globals, matrices);
+  testing::skinning_matrices(m.skeleton, globals, matrices);
   std::vector<Eigen::Vector3f> p, n;
   for (int g = 0; g < c->model->ngeom; ++g) {
-    skin_mesh(m.meshes[g], matrices, p, n);
+    testing::skin_mesh(m.meshes[g], matrices, p, n);
     write_mesh_vertices(c->model, g, p, n);
     for (size_t v = 0; v < p.size(); v += 5)
       ASSERT_LT(

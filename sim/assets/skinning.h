@@ -1,14 +1,19 @@
 #pragma once
-// Posing a loaded model: a skeleton pose (local transforms of every bone),
-// from a clip sampled at a time or from the simulator's own gait setting
-// named bones, then linear blend skinning of the meshes into the model frame.
+// Posing a loaded model's skeleton: a skeleton pose (local transforms of
+// every bone), from a clip sampled at a time or from the simulator's own gait
+// setting named bones, and the bones' global transforms.
+//
+// The meshes are skinned by MuJoCo, not here: sim/actors/human_rig.h and
+// clip_rig.h pose the skeleton each step, sim/actors/bone_poses.h turns the
+// globals into one mocap body per deforming bone, sim/scene/skinned_actor_xml.h
+// binds each material submesh to those bodies as a `<skin>`, and MuJoCo
+// blends the vertices when it renders. A CPU linear blend skinning that tests
+// compare against is sim/assets/testing/cpu_skinning.h.
 //
 // Typical frame:
 //   SkeletonPose pose = rest_pose(model.skeleton);
 //   sample_clip(model.clips[walk], t, /*loop=*/true, pose);   // or turn_bone(...)
 //   bone_globals(model.skeleton, pose, globals);
-//   skinning_matrices(model.skeleton, globals, skin);
-//   for (mesh : model.meshes) skin_mesh(mesh, skin, positions, normals);
 #include <string>
 #include <vector>
 
@@ -36,17 +41,6 @@ void sample_clip(const AnimationClip& clip, double t, bool loop, SkeletonPose& p
 // Global transforms of every bone in the model frame (root * parent chain).
 void bone_globals(const Skeleton& skeleton, const SkeletonPose& pose,
                   std::vector<Eigen::Affine3d>& globals);
-
-// The skinning matrix of every bone: global * inverse_bind (identity at the
-// bind pose).
-void skinning_matrices(const Skeleton& skeleton, const std::vector<Eigen::Affine3d>& globals,
-                       std::vector<Eigen::Affine3d>& matrices);
-
-// Linear blend skinning of one mesh: deformed positions and unit normals in
-// the model frame (no normals out for a mesh without normals). A rigid mesh
-// (no bone weights) and unweighted vertices keep their bind positions.
-void skin_mesh(const AssetMesh& mesh, const std::vector<Eigen::Affine3d>& matrices,
-               std::vector<Eigen::Vector3f>& positions, std::vector<Eigen::Vector3f>& normals);
 
 // Driving bones by name from the simulator's gait (the people's only clip is
 // a short test walk).

@@ -2,6 +2,7 @@
 // reproduces the mesh, a known bone turn moves known vertices, clip keys come
 // back at their times.
 #include "sim/assets/skinning.h"
+#include "sim/assets/testing/cpu_skinning.h"
 
 #include <gtest/gtest.h>
 
@@ -53,12 +54,12 @@ struct Posed {
 Posed skin_all(const AssetModel& m, const SkeletonPose& pose) {
   std::vector<Eigen::Affine3d> globals, matrices;
   bone_globals(m.skeleton, pose, globals);
-  skinning_matrices(m.skeleton, globals, matrices);
+  testing::skinning_matrices(m.skeleton, globals, matrices);
   Posed out;
   out.positions.resize(m.meshes.size());
   out.normals.resize(m.meshes.size());
   for (size_t i = 0; i < m.meshes.size(); ++i)
-    skin_mesh(m.meshes[i], matrices, out.positions[i], out.normals[i]);
+    testing::skin_mesh(m.meshes[i], matrices, out.positions[i], out.normals[i]);
   return out;
 }
 
