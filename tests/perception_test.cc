@@ -15,8 +15,8 @@
 #include "slam/detect/sim_detector_config.h"
 #include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
-#include "tools/runner/detector_eval.h"
-#include "tools/runner/segmenter_eval.h"
+#include "tools/perception/detector_eval.h"
+#include "tools/perception/segmenter_eval.h"
 
 namespace fs = std::filesystem;
 
@@ -85,8 +85,8 @@ TEST(Perception, YoloFastestFindsBothPeopleOfTheRealTumFrame) {
       slam::load_detector_config(kSource + "/scenes/detectors/yolo_fastest.yaml"));
   const eval::ImageLabels labels = tum_frame_labels();
   ASSERT_EQ(labels.images.size(), 1u);
-  const runner::DetectorEval e =
-      runner::evaluate_on_images(*detector, labels, runner::class_mapping_for("darknet", ""), true);
+  const perception::DetectorEval e = perception::evaluate_on_images(
+      *detector, labels, perception::class_mapping_for("darknet", ""), true);
   EXPECT_EQ(e.score.tally("person").all.total, 2);
   EXPECT_EQ(e.score.tally("person").all.found, 2);
   EXPECT_EQ(e.score.tally("person").precision.rate(), 1.0);
@@ -96,8 +96,8 @@ TEST(Perception, SelfieSegmentationMasksThePeopleOfTheRealTumFrame) {
   REQUIRE_SHARED_DATA();
   slam::PersonSegmenter segmenter(
       slam::load_segmenter_config(kSource + "/scenes/segmenters/selfie.yaml"));
-  const runner::SegmenterEval e =
-      runner::evaluate_segmenter_on_images(segmenter, tum_frame_labels(), true);
+  const perception::SegmenterEval e =
+      perception::evaluate_segmenter_on_images(segmenter, tum_frame_labels(), true);
   ASSERT_EQ(e.frames.size(), 1u);
   const eval::BoxCoverage& c = e.frames[0].coverage;
   // Measured 0.97 inside and 0.73 covered: a person's box holds background

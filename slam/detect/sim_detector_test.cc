@@ -23,7 +23,7 @@
 #include "common/testing/error_of.h"
 #include "dataset/boxes.h"
 #include "slam/detect/detection_file.h"
-#include "slam/detect/sim_detector_fit.h"
+#include "tools/perception/sim_detector_fit.h"
 
 namespace depot::slam {
 namespace {
@@ -593,7 +593,7 @@ TEST_F(SimDetectorTest, FitRecoversTheConfigurationFromItsOwnDetections) {
   known.class_confusion = 0.0;
   known.class_confusion_rate = {{"cat", 0.2}};
   known.confusions = {{"cat", {"dog"}}};
-  FitData data;
+  perception::FitData data;
   data.min_confidence = known.min_confidence;
   for (int s = 0; s < 100; ++s) {
     for (const std::string* dataset : {dataset_, patrol_}) {
@@ -605,7 +605,7 @@ TEST_F(SimDetectorTest, FitRecoversTheConfigurationFromItsOwnDetections) {
         const auto m = match(t, dets, 0.5);
         std::vector<bool> used(dets.size(), false);
         for (size_t k = 0; k < t.size(); ++k) {
-          FitBox b;
+          perception::FitBox b;
           b.truth_class = t[k].class_name;
           b.area = t[k].area();
           b.image_area = image_area;
@@ -629,7 +629,8 @@ TEST_F(SimDetectorTest, FitRecoversTheConfigurationFromItsOwnDetections) {
       }
     }
   }
-  const SimDetectorFit fit = fit_sim_detector(data, SimDetectorConfig{}, "sim");
+  const perception::SimDetectorFit fit =
+      perception::fit_sim_detector(data, SimDetectorConfig{}, "sim");
   const SimDetectorConfig& c = fit.config;
   std::cout << "[sim] fit on " << fit.boxes << " boxes: miss person "
             << c.class_miss_rate.at("person") << " (0.05), pig " << c.class_miss_rate.at("pig")

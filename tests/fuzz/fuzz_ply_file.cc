@@ -1,5 +1,5 @@
 // libFuzzer target: PLY point clouds as `depot eval cloud` reads them
-// (tools/runner/cloud_eval.cc): our header/length check first
+// (tools/perception/cloud_eval.cc): our header/length check first
 // (slam/io/ply_file.h, check_ply_file), then assimp on what passed it (a
 // count that differs from the header's is read_cloud's error). Seeds come from the writer:
 // DEPOT_FUZZ_WRITE_SEED=FILE fuzz_ply_file writes a small binary PLY and

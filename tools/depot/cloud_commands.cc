@@ -1,6 +1,6 @@
 // `depot eval cloud CLOUD --dataset D --trajectory T [--static S]`: a static
 // map's point cloud scored against a simulated dataset's truth
-// (tools/runner/cloud_eval.h).
+// (tools/perception/cloud_eval.h).
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -11,13 +11,13 @@
 #include "common/staged_file.h"
 #include "tools/depot/commands.h"
 #include "tools/depot/output_paths.h"
-#include "tools/runner/cloud_eval.h"
+#include "tools/perception/cloud_eval.h"
 
 namespace depot::cli {
 namespace {
 
 struct CloudArgs {
-  runner::CloudScoreOptions options;
+  perception::CloudScoreOptions options;
   std::string json;
 };
 
@@ -30,7 +30,7 @@ void run_cloud_eval(const CloudArgs& a) {
   outputs.add_file("--json", a.json);
   outputs.check();
   if (!a.json.empty()) check_output_file(a.json);
-  const runner::CloudScore s = runner::score_static_cloud(a.options);
+  const perception::CloudScore s = perception::score_static_cloud(a.options);
   std::printf("%s: %zu points (aligned by the trajectory, ATE %.4f m)\n", a.options.cloud.c_str(),
               s.points, s.alignment_rmse);
   std::printf("on moving objects: %zu points (%.2f %%), checked in %zu frames", s.on_moving,
@@ -75,7 +75,7 @@ void run_cloud_eval(const CloudArgs& a) {
 
 void register_cloud_eval_command(CLI::App* eval_group) {
   auto args = std::make_shared<CloudArgs>();
-  runner::CloudScoreOptions& o = args->options;
+  perception::CloudScoreOptions& o = args->options;
   CLI::App* cmd = eval_group->add_subcommand(
       "cloud",
       "A static map's point cloud against a simulated dataset's truth: share of points on moving "

@@ -1,6 +1,6 @@
 // `depot eval detector|segmenter`: a detector or a person segmenter scored
 // against a simulated dataset's ground truth and/or hand-labelled real
-// images. The work is in tools/runner (running) and eval/ (scoring, report).
+// images. The work is in tools/perception (running) and eval/ (scoring, report).
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -21,9 +21,9 @@
 #include "tools/depot/commands.h"
 #include "tools/depot/detector_options.h"
 #include "tools/depot/output_paths.h"
-#include "tools/runner/detector_calibration.h"
-#include "tools/runner/detector_eval.h"
-#include "tools/runner/segmenter_eval.h"
+#include "tools/perception/detector_calibration.h"
+#include "tools/perception/detector_eval.h"
+#include "tools/perception/segmenter_eval.h"
 #include "tools/runner/slam_runner.h"
 
 namespace fs = std::filesystem;
@@ -81,7 +81,7 @@ void run_detector_eval(DetectorArgs& a) {
   if (type == "file")
     fail_usage("--detector file", "is not scored here (score the detector itself)");
   // Everything that can be refused is refused before the first frame.
-  const eval::ClassMapping mapping = runner::class_mapping_for(type, a.class_map);
+  const eval::ClassMapping mapping = perception::class_mapping_for(type, a.class_map);
   std::optional<eval::ImageLabels> labels;
   if (!a.images.empty()) labels = eval::read_image_labels(a.images);
   OutputPaths outputs;
@@ -101,16 +101,16 @@ void run_detector_eval(DetectorArgs& a) {
     report.emplace(a.report, kReportKind, false);
   }
 
-  std::vector<runner::DetectorEval> evals;
+  std::vector<perception::DetectorEval> evals;
   std::vector<std::string> names;
   if (!dataset.empty()) {
-    evals.push_back(
-        runner::evaluate_on_dataset(*detector, dataset, mapping, a.every, type != "sim", a.quiet));
+    evals.push_back(perception::evaluate_on_dataset(*detector, dataset, mapping, a.every,
+                                                    type != "sim", a.quiet));
     names.push_back("sim: " + fs::path(dataset).filename().string() + ", " +
                     every_text(a.every, evals.back().score.frames()));
   }
   if (labels) {
-    evals.push_back(runner::evaluate_on_images(*detector, *labels, mapping, a.quiet));
+    evals.push_back(perception::evaluate_on_images(*detector, *labels, mapping, a.quiet));
     names.push_back("real: " + fs::path(a.images).filename().string() + ", " +
                     std::to_string(labels->images.size()) + " images");
   }
@@ -146,8 +146,8 @@ std::string rate_text(const eval::Tally& t) {
 void run_calibrate(CalibrateArgs& a) {
   const std::string& type = a.detector.detector;
   // Everything that can be refused is refused before the first frame.
-  const eval::ClassMapping mapping = runner::class_mapping_for(type, a.class_map);
-  runner::CalibrationRequest request;
+  const eval::ClassMapping mapping = perception::class_mapping_for(type, a.class_map);
+  perception::CalibrationRequest request;
   request.datasets = a.datasets;
   request.every = a.every;
   request.mapping = mapping;
@@ -157,7 +157,7 @@ void run_calibrate(CalibrateArgs& a) {
     // The simulated detector fitted to itself: a check of the fit.
     if (a.datasets.size() != 1)
       fail_usage("--detector sim", "calibrates against one DATASET (the one it reads)");
-    runner::check_calibration_dataset(a.datasets.front());
+    perception::check_calibration_dataset(a.datasets.front());
     a.detector.dataset = a.datasets.front();
     request.base = runner::sim_detector_config(a.detector);
     request.min_confidence = request.base.min_confidence;
@@ -168,14 +168,14 @@ void run_calibrate(CalibrateArgs& a) {
     request.min_confidence = slam::load_detector_config(detector_config).confidence;
   }
   check_output_file(a.output);
-  for (const std::string& d : a.datasets) runner::check_calibration_dataset(d);
+  for (const std::string& d : a.datasets) perception::check_calibration_dataset(d);
   std::unique_ptr<slam::Detector> detector = runner::make_detector(a.detector, type);
   StagedFile out(a.output);
 
   std::string config_text;
-  const runner::DetectorCalibration cal =
-      runner::calibrate_sim_detector(*detector, request, config_text);
-  runner::CalibrationMeta meta;
+  const perception::DetectorCalibration cal =
+      perception::calibrate_sim_detector(*detector, request, config_text);
+  perception::CalibrationMeta meta;
   meta.detector_type = type;
   meta.detector_config = detector_config;
   meta.class_map = mapping.path();
@@ -184,13 +184,14 @@ void run_calibrate(CalibrateArgs& a) {
   for (const std::string& d : a.datasets) meta.command += " " + d;
   meta.command += " --detector " + type;
   if (!a.detector.detector_config.empty())
-    meta.command += " --detector-config " + runner::portable_path(a.detector.detector_config);
+    meta.command += " --detector-config " + perception::portable_path(a.detector.detector_config);
   for (const YamlOverride& o : a.detector.detector_overrides)
     meta.command += " --detector-set " + o.key + "=" + o.value;
-  if (!a.class_map.empty()) meta.command += " --class-map " + runner::portable_path(a.class_map);
+  if (!a.class_map.empty())
+    meta.command += " --class-map " + perception::portable_path(a.class_map);
   if (a.every != 1) meta.command += " --every " + std::to_string(a.every);
-  meta.command += " -o " + runner::portable_path(a.output);
-  out.stream() << runner::calibration_file_text(cal, config_text, meta);
+  meta.command += " -o " + perception::portable_path(a.output);
+  out.stream() << perception::calibration_file_text(cal, config_text, meta);
   out.commit();
 
   std::printf(
@@ -205,7 +206,7 @@ void run_calibrate(CalibrateArgs& a) {
   for (const std::string& c : cal.classes) {
     const auto it = cal.per_class.find(c);
     if (it == cal.per_class.end() || it->second.truth_boxes == 0) continue;
-    const runner::ClassCalibration& pc = it->second;
+    const perception::ClassCalibration& pc = it->second;
     std::printf("  %-8s %6ld %10s %10s %10s %10s\n", c.c_str(), pc.truth_boxes,
                 rate_text(pc.real_all).c_str(), rate_text(pc.sim_all).c_str(),
                 rate_text(pc.real_clear).c_str(), rate_text(pc.sim_clear).c_str());
@@ -223,8 +224,8 @@ void run_segmenter_eval(const SegmenterArgs& a) {
 
   nlohmann::json doc = {{"segmenter", segmenter.name()}};
   if (!a.dataset.empty()) {
-    const runner::SegmenterEval e =
-        runner::evaluate_segmenter(segmenter, a.dataset, a.every, a.quiet);
+    const perception::SegmenterEval e =
+        perception::evaluate_segmenter(segmenter, a.dataset, a.every, a.quiet);
     std::printf("sim: %s, %s: person mask (probability >= %.2f) against the label masks\n%s",
                 fs::path(a.dataset).filename().c_str(),
                 every_text(a.every, e.frames.size()).c_str(), segmenter.config().threshold,
@@ -232,8 +233,8 @@ void run_segmenter_eval(const SegmenterArgs& a) {
     doc["dataset"] = e.json();
   }
   if (labels) {
-    const runner::SegmenterEval e =
-        runner::evaluate_segmenter_on_images(segmenter, *labels, a.quiet);
+    const perception::SegmenterEval e =
+        perception::evaluate_segmenter_on_images(segmenter, *labels, a.quiet);
     std::printf("real: %s: person mask against the hand-labelled person boxes\n%s",
                 fs::path(a.images).filename().c_str(), e.text().c_str());
     doc["images"] = e.json();

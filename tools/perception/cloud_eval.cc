@@ -1,4 +1,4 @@
-#include "tools/runner/cloud_eval.h"
+#include "tools/perception/cloud_eval.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,7 +31,7 @@
 
 namespace fs = std::filesystem;
 
-namespace depot::runner {
+namespace depot::perception {
 namespace {
 
 std::vector<Eigen::Vector3d> read_cloud(const std::string& path) {
@@ -246,4 +246,4 @@ CloudScore score_static_cloud(const CloudScoreOptions& o) {
   return score;
 }
 
-}  // namespace depot::runner
+}  // namespace depot::perception

@@ -20,7 +20,7 @@
 
 #include "eval/statistics.h"
 
-namespace depot::runner {
+namespace depot::perception {
 
 struct CloudScoreOptions {
   std::string cloud;           // PLY (or any point format assimp reads)
@@ -55,4 +55,4 @@ struct CloudScore {
 // render whose camera path is not the dataset's.
 CloudScore score_static_cloud(const CloudScoreOptions& options);
 
-}  // namespace depot::runner
+}  // namespace depot::perception

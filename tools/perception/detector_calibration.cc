@@ -1,4 +1,4 @@
-#include "tools/runner/detector_calibration.h"
+#include "tools/perception/detector_calibration.h"
 
 #include <yaml-cpp/yaml.h>
 
@@ -13,11 +13,11 @@
 #include "common/error.h"
 #include "dataset/boxes.h"
 #include "slam/detect/sim_detector.h"
-#include "tools/runner/detector_eval.h"
+#include "tools/perception/detector_eval.h"
 
 namespace fs = std::filesystem;
 
-namespace depot::runner {
+namespace depot::perception {
 namespace {
 
 bool contains(const std::vector<std::string>& v, const std::string& s) {
@@ -27,8 +27,8 @@ bool contains(const std::vector<std::string>& v, const std::string& s) {
 // What the detector did with each box of a frame, and its false positives.
 void collect_frame(const std::vector<slam::TruthBox>& truth,
                    const std::vector<eval::ScoredDetection>& detections,
-                   const eval::ClassMapping& mapping, const slam::SimDetector& model,
-                   slam::FitData& data, std::map<std::string, ClassCalibration>& per_class) {
+                   const eval::ClassMapping& mapping, const slam::SimDetector& model, FitData& data,
+                   std::map<std::string, ClassCalibration>& per_class) {
   const std::vector<std::string>& classes = model.class_names();
   const double image_area = static_cast<double>(model.image_size().area());
   const eval::FrameMatch m =
@@ -36,7 +36,7 @@ void collect_frame(const std::vector<slam::TruthBox>& truth,
   std::vector<bool> used(detections.size(), false);
   for (size_t t = 0; t < truth.size(); ++t) {
     const slam::TruthBox& box = truth[t];
-    slam::FitBox b;
+    FitBox b;
     b.truth_class = box.class_name;
     b.area = box.area();
     b.image_area = image_area;
@@ -205,7 +205,7 @@ DetectorCalibration calibrate_sim_detector(slam::Detector& detector,
       if (!contains(out.classes, c)) out.classes.push_back(c);
   }
 
-  slam::FitData data;
+  FitData data;
   data.min_confidence = request.min_confidence;
   for (size_t k = 0; k < request.datasets.size(); ++k) {
     const std::string& path = request.datasets[k];
@@ -228,7 +228,7 @@ DetectorCalibration calibrate_sim_detector(slam::Detector& detector,
     out.datasets.push_back(std::move(d));
   }
 
-  out.fit = slam::fit_sim_detector(data, request.base, join(request.datasets, ", "));
+  out.fit = fit_sim_detector(data, request.base, join(request.datasets, ", "));
   // The re-run uses the values exactly as the file states them.
   config_text = config_yaml(out.fit.config);
   slam::SimDetectorConfig fitted =
@@ -289,7 +289,7 @@ std::string calibration_file_text(const DetectorCalibration& cal, const std::str
     out << YAML::EndMap;
   }
   out << YAML::EndSeq;
-  const slam::SimDetectorFit& f = cal.fit;
+  const SimDetectorFit& f = cal.fit;
   out << YAML::Key << "scored_frames" << YAML::Value << f.frames;
   out << YAML::Key << "truth_boxes" << YAML::Value << f.boxes;
   out << YAML::Key << "matched" << YAML::Value << f.matched;
@@ -339,4 +339,4 @@ std::string calibration_file_text(const DetectorCalibration& cal, const std::str
   return header + config_text + out.c_str() + "\n";
 }
 
-}  // namespace depot::runner
+}  // namespace depot::perception

@@ -4,7 +4,7 @@
 // same loop, matching and class mapping as `depot eval detector`), every
 // ground-truth box becomes a sample of what the detector did with it, the
 // simulated detector's error model is fitted to the samples
-// (slam/detect/sim_detector_fit.h), and the fitted simulated detector is
+// (tools/perception/sim_detector_fit.h), and the fitted simulated detector is
 // re-run on the same datasets so that its recall per class can be compared
 // with the real one's.
 #include <map>
@@ -19,9 +19,9 @@
 #include "eval/detection_score.h"
 #include "slam/detect/detection.h"
 #include "slam/detect/sim_detector_config.h"
-#include "slam/detect/sim_detector_fit.h"
+#include "tools/perception/sim_detector_fit.h"
 
-namespace depot::runner {
+namespace depot::perception {
 
 struct CalibrationRequest {
   std::vector<std::string> datasets;  // simulated dataset folders
@@ -50,7 +50,7 @@ struct ClassCalibration {
 };
 
 struct DetectorCalibration {
-  slam::SimDetectorFit fit;
+  SimDetectorFit fit;
   std::vector<CalibrationDataset> datasets;
   std::vector<std::string> classes;  // the datasets' classes.txt classes, in order
   std::map<std::string, ClassCalibration> per_class;
@@ -89,4 +89,4 @@ std::string calibration_file_text(const DetectorCalibration& calibration,
 // (scenes/...) or ${DEPOT_SHARED_DATA}/... when inside them, else as given.
 std::string portable_path(const std::string& path);
 
-}  // namespace depot::runner
+}  // namespace depot::perception

@@ -1,4 +1,4 @@
-#include "tools/runner/detector_eval.h"
+#include "tools/perception/detector_eval.h"
 
 #include <chrono>
 #include <filesystem>
@@ -13,7 +13,7 @@
 #include "dataset/objects.h"
 #include "slam/detect/truth_boxes.h"
 
-namespace depot::runner {
+namespace depot::perception {
 namespace {
 
 std::vector<eval::ScoredDetection> scored(const std::vector<slam::Detection>& detections) {
@@ -111,4 +111,4 @@ DetectorEval evaluate_on_images(slam::Detector& detector, const eval::ImageLabel
   return eval;
 }
 
-}  // namespace depot::runner
+}  // namespace depot::perception

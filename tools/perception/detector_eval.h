@@ -14,7 +14,7 @@
 #include "slam/detect/detection.h"
 #include "slam/detect/truth_boxes.h"
 
-namespace depot::runner {
+namespace depot::perception {
 
 struct DetectorEval {
   eval::DetectionScore score;
@@ -55,4 +55,4 @@ DetectorEval evaluate_on_dataset(slam::Detector& detector, const std::string& da
 DetectorEval evaluate_on_images(slam::Detector& detector, const eval::ImageLabels& labels,
                                 const eval::ClassMapping& mapping, bool quiet);
 
-}  // namespace depot::runner
+}  // namespace depot::perception

@@ -1,4 +1,4 @@
-#include "tools/runner/segmenter_eval.h"
+#include "tools/perception/segmenter_eval.h"
 
 #include <chrono>
 #include <cmath>
@@ -18,7 +18,7 @@
 
 namespace fs = std::filesystem;
 
-namespace depot::runner {
+namespace depot::perception {
 namespace {
 
 constexpr const char* kPerson = "person";
@@ -173,4 +173,4 @@ SegmenterEval evaluate_segmenter_on_images(slam::PersonSegmenter& segmenter,
   return eval;
 }
 
-}  // namespace depot::runner
+}  // namespace depot::perception

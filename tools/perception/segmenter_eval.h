@@ -12,7 +12,7 @@
 #include "eval/mask_score.h"
 #include "slam/detect/person_segmenter.h"
 
-namespace depot::runner {
+namespace depot::perception {
 
 struct SegmenterFrame {
   std::string name;            // rgb timestamp or image file
@@ -44,4 +44,4 @@ SegmenterEval evaluate_segmenter(slam::PersonSegmenter& segmenter, const std::st
 SegmenterEval evaluate_segmenter_on_images(slam::PersonSegmenter& segmenter,
                                            const eval::ImageLabels& labels, bool quiet);
 
-}  // namespace depot::runner
+}  // namespace depot::perception

@@ -1,4 +1,4 @@
-#include "slam/detect/sim_detector_fit.h"
+#include "tools/perception/sim_detector_fit.h"
 
 #include <algorithm>
 #include <array>
@@ -10,7 +10,7 @@
 #include "common/rng.h"
 #include "slam/detect/sim_detector.h"
 
-namespace depot::slam {
+namespace depot::perception {
 namespace {
 
 constexpr int kRounds = 10;
@@ -149,8 +149,8 @@ struct ClassBoxes {
 
 // u = (1 - boost s)(1 - occlusion_miss o) r(d) of a box.
 double miss_weight(const FitBox& b, const Shape& shape, const Retention& retention) {
-  const double s = model_smallness(b.area, b.image_area, shape.small_area);
-  const double d = model_difficulty(s, b.occlusion);
+  const double s = slam::model_smallness(b.area, b.image_area, shape.small_area);
+  const double d = slam::model_difficulty(s, b.occlusion);
   return (1.0 - shape.boost * s) * (1.0 - shape.occlusion * b.occlusion) * retention.at(d);
 }
 
@@ -289,7 +289,7 @@ double iou_retention(double jitter, double scale_error, double min_iou) {
   return static_cast<double>(kept) / kSamples;
 }
 
-SimDetectorFit fit_sim_detector(const FitData& data, const SimDetectorConfig& base,
+SimDetectorFit fit_sim_detector(const FitData& data, const slam::SimDetectorConfig& base,
                                 const std::string& where) {
   SimDetectorFit fit;
   fit.boxes = static_cast<long>(data.boxes.size());
@@ -346,8 +346,8 @@ SimDetectorFit fit_sim_detector(const FitData& data, const SimDetectorConfig& ba
   auto difficulties = [&](const Shape& s) {
     for (size_t i = 0; i < matched.size(); ++i) {
       const FitBox& b = *matched[i];
-      const double d =
-          model_difficulty(model_smallness(b.area, b.image_area, s.small_area), b.occlusion);
+      const double d = slam::model_difficulty(
+          slam::model_smallness(b.area, b.image_area, s.small_area), b.occlusion);
       difficulty[i] = b.confused() ? std::max(d, 0.5) : d;  // as the simulator scores them
     }
   };
@@ -421,8 +421,8 @@ SimDetectorFit fit_sim_detector(const FitData& data, const SimDetectorConfig& ba
   for (size_t k = 0; k < classes.size(); ++k) rate_of[classes[k].name] = rates[k];
   double off_target = 0, off_target_confidence = 0;
   for (const FitBox& b : data.boxes) {
-    const double s = model_smallness(b.area, b.image_area, shape.small_area);
-    const double d = model_difficulty(s, b.occlusion);
+    const double s = slam::model_smallness(b.area, b.image_area, shape.small_area);
+    const double d = slam::model_difficulty(s, b.occlusion);
     const double detected =
         rate_of[b.truth_class] * (1.0 - shape.boost * s) * (1.0 - shape.occlusion * b.occlusion);
     const double off = detected * (1.0 - retention.at(d));
@@ -442,7 +442,7 @@ SimDetectorFit fit_sim_detector(const FitData& data, const SimDetectorConfig& ba
   }
   fit.off_target = off_target;
 
-  SimDetectorConfig& c = fit.config;
+  slam::SimDetectorConfig& c = fit.config;
   c = base;
   c.perfect = false;
   c.miss_rate = clamp(pooled_miss, 0.0, 1.0);
@@ -472,4 +472,4 @@ SimDetectorFit fit_sim_detector(const FitData& data, const SimDetectorConfig& ba
   return fit;
 }
 
-}  // namespace depot::slam
+}  // namespace depot::perception

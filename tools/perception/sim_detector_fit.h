@@ -41,7 +41,7 @@
 
 #include "slam/detect/sim_detector_config.h"
 
-namespace depot::slam {
+namespace depot::perception {
 
 // One ground-truth box and what the detector under calibration made of it.
 struct FitBox {
@@ -80,7 +80,7 @@ struct ClassFit {
 struct SimDetectorFit {
   // `base` with every fitted key replaced (seed, default_fill and
   // latency_frames are kept; perfect is off).
-  SimDetectorConfig config;
+  slam::SimDetectorConfig config;
   std::map<std::string, ClassFit> classes;  // per truth class with boxes
   long boxes = 0, matched = 0, confused = 0, false_positives = 0, frames = 0;
   double miss_log_likelihood = 0;  // of the miss model at the fit, nats
@@ -93,7 +93,7 @@ struct SimDetectorFit {
 // parameter has nothing to be fitted on: no boxes, no frame, no matched box
 // (localisation and confidences), no partly occluded box of a class the
 // detector matched (occlusion_miss).
-SimDetectorFit fit_sim_detector(const FitData& data, const SimDetectorConfig& base,
+SimDetectorFit fit_sim_detector(const FitData& data, const slam::SimDetectorConfig& base,
                                 const std::string& where);
 
 // The probability that a box keeps IoU >= `min_iou` with itself after the
@@ -102,4 +102,4 @@ SimDetectorFit fit_sim_detector(const FitData& data, const SimDetectorConfig& ba
 // fixed Monte Carlo sample, so the same arguments give the same value.
 double iou_retention(double jitter, double scale_error, double min_iou = 0.5);
 
-}  // namespace depot::slam
+}  // namespace depot::perception

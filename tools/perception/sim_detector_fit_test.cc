@@ -2,7 +2,7 @@
 // model itself with known parameters (the way the simulated detector draws
 // them, with the IoU >= 0.5 cut of the matching), the fit recovers them; and
 // a parameter with nothing to be fitted on is one clear error.
-#include "slam/detect/sim_detector_fit.h"
+#include "tools/perception/sim_detector_fit.h"
 
 #include <cmath>
 #include <string>
@@ -13,7 +13,7 @@
 #include "common/testing/error_of.h"
 #include "slam/detect/sim_detector.h"
 
-namespace depot::slam {
+namespace depot::perception {
 namespace {
 
 constexpr double kImageArea = 640.0 * 480.0;
@@ -27,7 +27,7 @@ double iou_of_unit_box(double cx, double cy, double w, double h) {
 // `n` boxes of classes person, dog and chair drawn from `truth`'s model
 // (dogs are confused with cats), as a detector with this error model would
 // leave them after matching at IoU >= 0.5.
-FitData draw(const SimDetectorConfig& truth, int n, uint64_t seed) {
+FitData draw(const slam::SimDetectorConfig& truth, int n, uint64_t seed) {
   Rng rng(seed);
   FitData data;
   data.min_confidence = truth.min_confidence;
@@ -38,8 +38,8 @@ FitData draw(const SimDetectorConfig& truth, int n, uint64_t seed) {
     b.image_area = kImageArea;
     b.area = kImageArea * std::exp(rng.uniform(std::log(0.001), std::log(0.5)));
     b.occlusion = rng.uniform() < 0.3 ? 0.0 : rng.uniform(0.0, 0.9);
-    const double s = model_smallness(b.area, b.image_area, truth.small_area);
-    double d = model_difficulty(s, b.occlusion);
+    const double s = slam::model_smallness(b.area, b.image_area, truth.small_area);
+    double d = slam::model_difficulty(s, b.occlusion);
     const auto rate = truth.class_miss_rate.find(b.truth_class);
     const double m = rate == truth.class_miss_rate.end() ? truth.miss_rate : rate->second;
     const double p_miss = 1.0 - (1.0 - m) * (1.0 - truth.small_miss_boost * s) *
@@ -74,8 +74,8 @@ FitData draw(const SimDetectorConfig& truth, int n, uint64_t seed) {
   return data;
 }
 
-SimDetectorConfig known() {
-  SimDetectorConfig c;
+slam::SimDetectorConfig known() {
+  slam::SimDetectorConfig c;
   c.miss_rate = 0.2;
   c.class_miss_rate = {{"person", 0.05}, {"chair", 0.6}};
   c.small_miss_boost = 0.7;
@@ -95,10 +95,10 @@ SimDetectorConfig known() {
 }
 
 TEST(SimDetectorFit, RecoversTheParametersItsBoxesWereDrawnWith) {
-  const SimDetectorConfig truth = known();
+  const slam::SimDetectorConfig truth = known();
   const FitData data = draw(truth, 30000, 7);
-  const SimDetectorFit fit = fit_sim_detector(data, SimDetectorConfig{}, "synthetic");
-  const SimDetectorConfig& c = fit.config;
+  const SimDetectorFit fit = fit_sim_detector(data, slam::SimDetectorConfig{}, "synthetic");
+  const slam::SimDetectorConfig& c = fit.config;
   std::printf(
       "[fit] miss person %.3f dog %.3f chair %.3f, boost %.3f, small_area %.4f, occlusion %.3f, "
       "jitter %.4f, scale %.4f, gain %.2f, max conf %.3f, drop %.3f, noise %.3f, fp %.3f "
@@ -131,13 +131,13 @@ TEST(SimDetectorFit, RecoversTheParametersItsBoxesWereDrawnWith) {
 }
 
 TEST(SimDetectorFit, ADetectorThatFindsEverythingFitsToNoMisses) {
-  SimDetectorConfig truth = known();
+  slam::SimDetectorConfig truth = known();
   truth.class_miss_rate = {{"person", 0.0}, {"dog", 0.0}, {"chair", 0.0}};
   truth.small_miss_boost = 0.0;
   truth.occlusion_miss = 0.0;
   truth.jitter = 0.01;
   truth.scale_error = 0.01;
-  const SimDetectorFit fit = fit_sim_detector(draw(truth, 5000, 3), SimDetectorConfig{}, "x");
+  const SimDetectorFit fit = fit_sim_detector(draw(truth, 5000, 3), slam::SimDetectorConfig{}, "x");
   for (const char* c : {"person", "dog", "chair"})
     EXPECT_LT(fit.config.class_miss_rate.at(c), 0.01) << c;
   EXPECT_LT(fit.config.occlusion_miss, 0.02);
@@ -185,4 +185,4 @@ TEST(SimDetectorFit, NothingToFitOnIsOneError) {
 }
 
 }  // namespace
-}  // namespace depot::slam
+}  // namespace depot::perception
