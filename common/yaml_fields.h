@@ -29,8 +29,8 @@ struct YamlSource {
   std::string where(const YAML::Node& node) const;
 };
 
-// A number as errors print it: the shortest text that reads back the same
-// (0.5, 1e-06, 30).
+// A number as errors print it: %g, six significant digits and no trailing
+// zeros (0.5, 1e-06, 30; not 0.500000).
 std::string shortest_number(double value);
 
 // A value node as a T, "bad value for '<key>'" where it is when it is not one
