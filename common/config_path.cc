@@ -42,10 +42,4 @@ std::string resolve_config_path(const std::string& value, const std::string& con
   return p.lexically_normal().string();
 }
 
-std::string folder_of(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  if (slash == std::string::npos) return ".";
-  return slash == 0 ? "/" : path.substr(0, slash);
-}
-
 }  // namespace depot

@@ -21,10 +21,6 @@ std::string shared_data_dir();
 // config_dir/value; an absolute path unchanged. Lexically normalised.
 std::string resolve_config_path(const std::string& value, const std::string& config_dir);
 
-// The folder of the configuration file `path` ("." for a bare name), the
-// config_dir of the paths it names.
-std::string folder_of(const std::string& path);
-
 // A file shipped with the project (e.g. "scenes/depot.yaml"): defaults that
 // configuration files need not name resolve here, never relative to a
 // user's file, so a copied scenario still finds them. The folder is

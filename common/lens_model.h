@@ -6,10 +6,11 @@
 //   r2 = x^2 + y^2, radial = 1 + k1 r2 + k2 r2^2 + k3 r2^3
 //   xd = x radial + 2 p1 x y + p2 (r2 + 2 x^2)
 //   yd = y radial + p1 (r2 + 2 y^2) + 2 p2 x y
-#include <cstdio>
 #include <string>
 
 #include <Eigen/Core>
+
+#include "common/number_text.h"
 
 namespace depot {
 
@@ -20,13 +21,8 @@ struct LensCoefficients {
 
 // "k1 -0.25, k2 0.08, p1 0, p2 0, k3 0", as errors name a lens.
 inline std::string describe_lens(const LensCoefficients& l) {
-  auto number = [](double v) {
-    char text[32];
-    std::snprintf(text, sizeof(text), "%g", v);
-    return std::string(text);
-  };
-  return "k1 " + number(l.k1) + ", k2 " + number(l.k2) + ", p1 " + number(l.p1) + ", p2 " +
-         number(l.p2) + ", k3 " + number(l.k3);
+  return "k1 " + shortest_number(l.k1) + ", k2 " + shortest_number(l.k2) + ", p1 " +
+         shortest_number(l.p1) + ", p2 " + shortest_number(l.p2) + ", k3 " + shortest_number(l.k3);
 }
 
 // The distorted normalised coordinates of the ray (x, y, 1).

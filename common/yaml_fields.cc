@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <set>
-#include <sstream>
 
 #include "common/yaml_file.h"
 
@@ -13,12 +12,6 @@ std::string YamlSource::where(const YAML::Node& node) const {
     if (value.is(node)) return option;
   if (node.Mark().is_null()) return file;
   return file + ":" + std::to_string(node.Mark().line + 1);
-}
-
-std::string shortest_number(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
 }
 
 YamlFields::YamlFields(const YAML::Node& map, YamlSource source, const std::string& what)

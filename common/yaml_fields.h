@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include "common/error.h"
+#include "common/number_text.h"
 
 namespace depot {
 
@@ -28,10 +29,6 @@ struct YamlSource {
   // with no line (a map made by overrides alone).
   std::string where(const YAML::Node& node) const;
 };
-
-// A number as errors print it: %g, six significant digits and no trailing
-// zeros (0.5, 1e-06, 30; not 0.500000).
-std::string shortest_number(double value);
 
 // A value node as a T, "bad value for '<key>'" where it is when it is not one
 // (for values found by walking a map, e.g. a class -> rate table).

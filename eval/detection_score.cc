@@ -1,8 +1,8 @@
 #include "eval/detection_score.h"
+#include "common/number_text.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 namespace depot::eval {
 namespace {
@@ -11,19 +11,13 @@ size_t bucket(const std::vector<double>& edges, double v) {
   return static_cast<size_t>(std::upper_bound(edges.begin(), edges.end(), v) - edges.begin());
 }
 
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%g", v);
-  return buf;
-}
-
 std::vector<std::string> bucket_names(const std::vector<double>& edges) {
   std::vector<std::string> names;
   if (edges.empty()) return {"all"};
-  names.push_back("<" + number(edges.front()));
+  names.push_back("<" + shortest_number(edges.front()));
   for (size_t i = 1; i < edges.size(); ++i)
-    names.push_back(number(edges[i - 1]) + "-" + number(edges[i]));
-  names.push_back(">=" + number(edges.back()));
+    names.push_back(shortest_number(edges[i - 1]) + "-" + shortest_number(edges[i]));
+  names.push_back(">=" + shortest_number(edges.back()));
   return names;
 }
 

@@ -2,25 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "common/error.h"
+#include "common/number_text.h"
 
 namespace depot::eval {
 namespace {
 
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%g", v);
-  return buf;
-}
-
 void check_selection(const PairSelection& s) {
   if (!std::isfinite(s.delta) || s.delta <= 0.0) {
-    fail("relative pose error", "delta must be positive, got " + number(s.delta));
+    fail("relative pose error", "delta must be positive, got " + shortest_number(s.delta));
   }
   if (s.unit == DeltaUnit::kFrames && s.delta != std::floor(s.delta)) {
-    fail("relative pose error", "a delta in frames must be a whole number, got " + number(s.delta));
+    fail("relative pose error",
+         "a delta in frames must be a whole number, got " + shortest_number(s.delta));
   }
   if (s.max_time_error < 0.0 || std::isinf(s.max_time_error)) {
     fail("relative pose error", "the accepted time error must be a non-negative number");

@@ -15,10 +15,6 @@ namespace {
 const std::set<std::string> kObjectTypes = {
     "rack", "crate_stack", "sack_pile", "pallet", "workbench", "desk", "barrel", "poster", "door"};
 
-std::string at(const std::string& path, const YAML::Node& n) {
-  return path + ":" + std::to_string(n.Mark().line + 1);
-}
-
 }  // namespace
 
 SceneLayout load_scene_layout(const std::string& path) {
@@ -30,12 +26,12 @@ SceneLayout load_scene_layout(const std::string& path) {
   const YamlFields hall_fields(hall, path, "hall");
   auto size = hall_fields.get<std::vector<double>>("size", {20.0, 12.0});
   if (size.size() != 2 || !(size[0] > 2 && size[1] > 2))
-    fail(at(path, hall), "hall size must be [length, width] > 2 m");
+    fail(yaml_where(path, hall), "hall size must be [length, width] > 2 m");
   layout.length = size[0];
   layout.width = size[1];
   layout.height = hall_fields.get<double>("height", 4.5);
   if (!(layout.height > 2.0 && layout.height < 20.0))
-    fail(at(path, hall), "hall height out of range (2, 20) m");
+    fail(yaml_where(path, hall), "hall height out of range (2, 20) m");
   for (const auto& l : root["lights"]) {
     std::vector<double> v;
     try {
@@ -43,7 +39,7 @@ SceneLayout load_scene_layout(const std::string& path) {
     } catch (const YAML::Exception&) {
       v.clear();
     }
-    if (v.size() != 3) fail(at(path, l), "light must be [x, y, z]");
+    if (v.size() != 3) fail(yaml_where(path, l), "light must be [x, y, z]");
     layout.lights.emplace_back(v[0], v[1], v[2]);
   }
   if (layout.lights.empty() || layout.lights.size() > 8) fail(path, "need 1 to 8 lights");
@@ -53,27 +49,28 @@ SceneLayout load_scene_layout(const std::string& path) {
     SceneObject o;
     o.type = fields.str("type");
     if (!kObjectTypes.count(o.type))
-      fail(at(path, n), "unknown scene object type '" + o.type + "'");
+      fail(yaml_where(path, n), "unknown scene object type '" + o.type + "'");
     o.name = fields.get<std::string>("name", o.type + "_" + std::to_string(index++));
     auto p = fields.get<std::vector<double>>("position", {});
     if (p.size() != 2 || !std::isfinite(p[0]) || !std::isfinite(p[1]))
-      fail(at(path, n), "object '" + o.name + "' needs position [x, y]");
+      fail(yaml_where(path, n), "object '" + o.name + "' needs position [x, y]");
     o.position = {p[0], p[1]};
     if (std::abs(p[0]) > layout.length / 2 || std::abs(p[1]) > layout.width / 2)
-      fail(at(path, n), "object '" + o.name + "' is outside the hall");
+      fail(yaml_where(path, n), "object '" + o.name + "' is outside the hall");
     o.yaw_deg = fields.get<double>("yaw_deg", 0.0);
     o.z = fields.get<double>("z", 0.0);
     o.length = fields.get<double>("length", o.type == "desk" ? 1.4 : 2.4);
     o.levels = fields.get<int>("levels", 4);
     auto c = fields.get<std::vector<int>>("count", {1, 1, 1});
     if (c.size() != 3 || c[0] < 1 || c[1] < 1 || c[2] < 1 || c[0] * c[1] * c[2] > 200)
-      fail(at(path, n), "count must be [nx, ny, nz] with 1..200 items");
+      fail(yaml_where(path, n), "count must be [nx, ny, nz] with 1..200 items");
     o.count = {c[0], c[1], c[2]};
-    if (o.levels < 1 || o.levels > 8) fail(at(path, n), "rack levels must be 1..8");
-    if (!(o.length > 0.2 && o.length < 20)) fail(at(path, n), "length out of range");
+    if (o.levels < 1 || o.levels > 8) fail(yaml_where(path, n), "rack levels must be 1..8");
+    if (!(o.length > 0.2 && o.length < 20)) fail(yaml_where(path, n), "length out of range");
     o.model = fields.get<std::string>("model", "");
     if (!o.model.empty() && o.type != "desk")
-      fail(at(path, n["model"]), "object '" + o.name + "': only desks take a catalogue 'model'");
+      fail(yaml_where(path, n["model"]),
+           "object '" + o.name + "': only desks take a catalogue 'model'");
     layout.objects.push_back(o);
   }
   return layout;

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <filesystem>
 
 #include "common/config_path.h"
 #include "common/error.h"
@@ -34,7 +35,7 @@ DetectorConfig load_detector_config(const std::string& yaml_path) {
     fail(yaml_where(yaml_path, root["type"]), "unknown detector type '" + printable(c.type) +
                                                   "' (expected yolov5, darknet or fastestdet)");
 
-  const std::string folder = folder_of(yaml_path);
+  const std::string folder = std::filesystem::path(yaml_path).parent_path().string();
   c.model = resolve_config_path(fields.str("model"), folder);
   c.config = resolve_config_path(fields.str("config"), folder);
   c.names = resolve_config_path(fields.str("names"), folder);

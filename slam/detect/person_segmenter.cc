@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include <opencv2/imgproc.hpp>
 
@@ -59,7 +60,8 @@ SegmenterConfig load_segmenter_config(const std::string& path) {
                    path);
   const YamlFields fields(root, path, "segmenter config");
   SegmenterConfig c;
-  c.model = resolve_config_path(fields.str("model"), folder_of(path));
+  c.model =
+      resolve_config_path(fields.str("model"), std::filesystem::path(path).parent_path().string());
   if (c.model.empty()) fail(path, "missing 'model' (path of the ONNX model file)");
   c.input_width = fields.number<int>("input_width", c.input_width, 8, 4096);
   c.input_height = fields.number<int>("input_height", c.input_height, 8, 4096);

@@ -69,9 +69,11 @@ TEST(RejectionSettings, NoTwoKeysShareAField) {
         : s.kind == RejectionSetting::Kind::kInteger    ? std::to_string(static_cast<int>(s.hi))
                                                         : std::to_string(s.hi);
     ASSERT_EQ(apply(changed, s.key, value), "") << s.key;
-    for (const RejectionSetting& t : rejection_settings())
-      if (&t != &s)
+    for (const RejectionSetting& t : rejection_settings()) {
+      if (&t != &s) {
         EXPECT_EQ(value_of(t, changed), value_of(t, defaults)) << s.key << " moved " << t.key;
+      }
+    }
   }
 }
 
