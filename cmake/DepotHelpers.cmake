@@ -32,10 +32,22 @@ function(depot_test name)
   endif()
   set(_props TIMEOUT ${ARG_TIMEOUT})
   if(ARG_LABELS)
-    list(APPEND _props LABELS "${ARG_LABELS}")
+    list(GET ARG_LABELS 0 _first)
+    list(APPEND _props LABELS ${_first})
   endif()
   if(ARG_SERIAL)
     list(APPEND _props RUN_SERIAL TRUE)
   endif()
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES ${_props})
+  # gtest_discover_tests passes a property's value as one word, so a test's
+  # further labels are set by a file ctest reads after the discovered tests.
+  list(LENGTH ARG_LABELS _count)
+  if(_count GREATER 1)
+    set(_labels_file "${CMAKE_CURRENT_BINARY_DIR}/${name}_labels.cmake")
+    file(WRITE "${_labels_file}"
+         "foreach(_test IN LISTS ${name}_TESTS)\n"
+         "  set_tests_properties(\"\${_test}\" PROPERTIES LABELS \"${ARG_LABELS}\")\n"
+         "endforeach()\n")
+    set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES "${_labels_file}")
+  endif()
 endfunction()
