@@ -1,10 +1,9 @@
-// Local mapping on keyframes of the real TUM frame (synchronous mode, so each
+// Local mapping on keyframes of the synthetic room's frame (synchronous mode, so each
 // step is observable): culling of weak new points, culling of redundant
 // keyframes, fusion of duplicate points, and failures reaching the caller.
 #include "slam/mapping/local_mapper.h"
 
 #include <chrono>
-#include <filesystem>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -12,7 +11,7 @@
 
 #include "common/error.h"
 #include "slam/feature/orb_extractor.h"
-#include "tests/support/real_frame.h"
+#include "tests/support/synthetic_room.h"
 
 namespace depot::slam {
 namespace {
@@ -20,9 +19,7 @@ namespace {
 class LocalMapperTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!std::filesystem::exists(test::real_frame_folder()))
-      GTEST_SKIP() << "shared data missing: " << test::real_frame_folder();
-    const test::RealFrame real = test::load_real_frame();
+    const test::RealFrame real = test::room_frame();
     cv::Mat gray;
     cv::cvtColor(real.bgr, gray, cv::COLOR_BGR2GRAY);
     std::vector<cv::KeyPoint> keypoints;
@@ -31,7 +28,7 @@ class LocalMapperTest : public ::testing::Test {
     features_ = Features(keypoints, descriptors, real.depth, PinholeCamera{}, &levels_);
   }
 
-  // A keyframe of the real frame at the origin; `points(i)` gives the map
+  // A keyframe of the room frame at the origin; `points(i)` gives the map
   // point of keypoint i (nullptr: none).
   template <typename PointOf>
   KeyFrame* add_keyframe(PointOf points) {

@@ -1,22 +1,21 @@
 // What the system reports per frame: the trajectory holds tracked frames
 // only, and frame_states() says what became of every frame given (here
-// through a reset, on exact turned views of the real TUM frame).
+// through a reset, on exact turned views of the synthetic room).
 #include "slam/system/system.h"
-
-#include <filesystem>
 
 #include <gtest/gtest.h>
 
 #include "tests/support/real_frame.h"
+#include "tests/support/room_vocabulary.h"
+#include "tests/support/synthetic_room.h"
 
 namespace depot::slam {
 namespace {
 
 TEST(SystemStates, TheTrajectoryHoldsTrackedFramesOnlyAndEveryFrameHasAState) {
-  if (!std::filesystem::exists(test::real_frame_folder()))
-    GTEST_SKIP() << "shared data missing: " << test::real_frame_folder();
-  const test::RealFrame real = test::load_real_frame();
+  const test::RealFrame real = test::room_frame();
   SlamSettings settings;  // TUM fr3, the frame's camera
+  settings.vocabulary = test::room_vocabulary_file();
   settings.threaded_mapping = false;
   settings.tracker.atlas = false;  // ORB-SLAM2: young maps are reset
   System system(settings);
@@ -24,7 +23,7 @@ TEST(SystemStates, TheTrajectoryHoldsTrackedFramesOnlyAndEveryFrameHasAState) {
   const cv::Mat no_depth(real.depth.size(), CV_32F, cv::Scalar(0));
   double t = 10.0;
   auto track_view = [&](double yaw) {
-    const test::RealFrame v = test::turned_view(real, settings.camera, test::turn(yaw));
+    const test::RealFrame v = test::room_view(test::turn(yaw));
     return system.track(v.bgr, v.depth, t += 0.1).state;
   };
   auto track_covered = [&] { return system.track(covered, no_depth, t += 0.1).state; };
@@ -68,10 +67,9 @@ TEST(SystemStates, TheTrajectoryHoldsTrackedFramesOnlyAndEveryFrameHasAState) {
 // The atlas: frames tracked in a map that never joins the main one are
 // OTHER_MAP and stay out of the trajectory, which is in the main map's frame.
 TEST(SystemStates, FramesOfAnotherMapOfTheAtlasAreNamedAndLeftOut) {
-  if (!std::filesystem::exists(test::real_frame_folder()))
-    GTEST_SKIP() << "shared data missing: " << test::real_frame_folder();
-  const test::RealFrame real = test::load_real_frame();
+  const test::RealFrame real = test::room_frame();
   SlamSettings settings;
+  settings.vocabulary = test::room_vocabulary_file();
   settings.threaded_mapping = false;
   settings.tracker.reset_keyframes = 0;  // keep maps of one or two keyframes
   System system(settings);
@@ -82,7 +80,7 @@ TEST(SystemStates, FramesOfAnotherMapOfTheAtlasAreNamedAndLeftOut) {
   cv::flip(real.depth, mirrored_depth, 1);
   double t = 10.0;
   auto track_view = [&](double yaw) {
-    const test::RealFrame v = test::turned_view(real, settings.camera, test::turn(yaw));
+    const test::RealFrame v = test::room_view(test::turn(yaw));
     return system.track(v.bgr, v.depth, t += 0.1).state;
   };
   EXPECT_EQ(track_view(0), TrackingState::kOk);

@@ -1,9 +1,7 @@
-// The tracker on exact turned views of the real TUM frame (known poses):
+// The tracker on exact turned views of the synthetic room (known poses):
 // initialisation, the motion model, the reference-keyframe fallback, a lost
 // frame (no pose) and recovery, and following points fused by mapping.
 #include "slam/track/tracker.h"
-
-#include <filesystem>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
@@ -11,8 +9,9 @@
 #include "slam/feature/orb_extractor.h"
 #include "slam/mapping/local_mapper.h"
 #include "slam/place/keyframe_database.h"
-#include "slam/place/vocabulary_file.h"
 #include "tests/support/real_frame.h"
+#include "tests/support/room_vocabulary.h"
+#include "tests/support/synthetic_room.h"
 
 namespace depot::slam {
 namespace {
@@ -26,18 +25,14 @@ TrackerParams without_atlas() {
 
 class TrackerTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    if (!std::filesystem::exists(test::real_frame_folder()))
-      GTEST_SKIP() << "shared data missing: " << test::real_frame_folder();
-    real_ = test::load_real_frame();
-  }
+  void SetUp() override { real_ = test::room_frame(); }
 
   // Tracks the view turned by `yaw_deg` (synchronous mapping after it, as
   // System does) and checks its pose when tracked. Only the left
   // `depth_share` of the image keeps its depth (a depth gap: a wall closer
   // than the sensor's range, glass, sunlight).
   TrackingStats track_view(double yaw_deg, double depth_share = 1.0) {
-    test::RealFrame view = test::turned_view(real_, camera_, test::turn(yaw_deg));
+    test::RealFrame view = test::room_view(test::turn(yaw_deg));
     const int keep = static_cast<int>(depth_share * view.depth.cols);
     view.depth.colRange(keep, view.depth.cols).setTo(0);
     TrackingStats stats;
@@ -58,12 +53,13 @@ class TrackerTest : public ::testing::Test {
     return stats;
   }
 
-  // The map's world is the camera of the frame it started on.
-  void expect_pose(double yaw_deg) {
+  // The map's world is the camera of the frame it started on. A frame that
+  // sees the map through a fifth of its view is held to a looser bound.
+  void expect_pose(double yaw_deg, double max_error_deg = 0.1) {
     const Pose truth = test::turned_pose(test::turn(yaw_deg)) *
                        test::turned_pose(test::turn(map_start_yaw_)).inverse();
     const Pose& estimate = tracker_.last_frame().T_cw;
-    EXPECT_LT(test::rotation_error_deg(estimate, truth), 0.1) << "yaw " << yaw_deg;
+    EXPECT_LT(test::rotation_error_deg(estimate, truth), max_error_deg) << "yaw " << yaw_deg;
     EXPECT_LT(estimate.translation().norm(), 0.01) << "yaw " << yaw_deg;
   }
 
@@ -88,7 +84,7 @@ class TrackerTest : public ::testing::Test {
   ScaleLevels levels_ = ScaleLevels::make(8, 1.2f);
   OrbExtractor extractor_{OrbParams{}};
   Map map_;
-  KeyFrameDatabase places_{load_vocabulary_shared(default_vocabulary_path())};
+  KeyFrameDatabase places_{test::room_vocabulary()};
   LocalMapper mapper_{map_, false, &places_};
   // A place the map has never seen: the frame mirrored (ORB is not mirror
   // invariant, so nothing in the map matches it).
@@ -133,7 +129,7 @@ TEST_F(TrackerTest, StartsAMapThenFollowsTheCameraWithTheMotionModel) {
 TEST_F(TrackerTest, AOneKeyframeMapTakesASecondWhenFewOfItsPointsAreTracked) {
   track_view(0);
   ASSERT_EQ(map_.n_keyframes(), 1u);
-  test::RealFrame partly = test::turned_view(real_, camera_, test::turn(1));
+  test::RealFrame partly = test::room_view(test::turn(1));
   const int cover = 2 * partly.bgr.cols / 3;
   partly.bgr.colRange(0, cover).setTo(cv::Scalar::all(90));
   partly.depth.colRange(0, cover).setTo(0);
@@ -375,7 +371,7 @@ TEST_F(AtlasDiscardTest, ATinyLostMapIsForgottenAndTheOlderOneKept) {
   track_view(0);
   // Four fifths of the view hidden by a new, near textured surface: close
   // points the map lacks, so the frame becomes the map's second keyframe.
-  test::RealFrame partly = test::turned_view(real_, camera_, test::turn(1));
+  test::RealFrame partly = test::room_view(test::turn(1));
   const int cover = 4 * partly.bgr.cols / 5;
   cv::Mat texture(partly.bgr.rows, cover, CV_8UC3);
   cv::RNG rng(7);
@@ -385,7 +381,7 @@ TEST_F(AtlasDiscardTest, ATinyLostMapIsForgottenAndTheOlderOneKept) {
   partly.depth.colRange(0, cover).setTo(1.2);
   tracker_.track(make_frame(partly.bgr, partly.depth));
   mapper_.run_pending();
-  expect_pose(1);
+  expect_pose(1, 0.2);
   track_view(2);
   const size_t first_map_keyframes = map_.n_keyframes_in(0);
   ASSERT_GE(first_map_keyframes, 2u) << "the first map must outgrow reset_keyframes";
@@ -464,7 +460,7 @@ TEST_F(AtlasTrackerTest, AYoungMapRejoinsTheOlderOneWhenAFrameRelocalisesThere) 
   cv::Mat mirrored_bgr, mirrored_depth;
   cv::flip(real_.bgr, mirrored_bgr, 1);
   cv::flip(real_.depth, mirrored_depth, 1);
-  const test::RealFrame view0 = test::turned_view(real_, camera_, test::turn(0));
+  const test::RealFrame view0 = test::room_view(test::turn(0));
   const int half = real_.bgr.cols / 2;
   cv::Mat bgr = mirrored_bgr.clone(), depth = mirrored_depth.clone();
   view0.bgr.colRange(half, bgr.cols).copyTo(bgr.colRange(half, bgr.cols));
