@@ -24,9 +24,9 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/support/render_helpers.h"
-#include "tools/harness/command_output.h"
-#include "tools/harness/slurm_submission.h"
-#include "tools/harness/sweep_job_state.h"
+#include "tools/harness/schedule/command_output.h"
+#include "tools/harness/schedule/slurm_submission.h"
+#include "tools/harness/plan/sweep_job_state.h"
 
 namespace fs = std::filesystem;
 

@@ -21,9 +21,9 @@
 
 #include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
-#include "tools/harness/run_record.h"
-#include "tools/harness/slurm_submission.h"
-#include "tools/harness/sweep_job_state.h"
+#include "tools/harness/plan/run_record.h"
+#include "tools/harness/schedule/slurm_submission.h"
+#include "tools/harness/plan/sweep_job_state.h"
 
 namespace fs = std::filesystem;
 
@@ -267,7 +267,7 @@ TEST(Sweep, ASystemFileGivenRelativeIsFoundFromAnyFolder) {
   EXPECT_NE(r.error.find("exited with code 2"), std::string::npos) << r.error;  // it ran
 }
 
-// Issue 30, item 6: one state per job (harness/sweep_job_state.h) for
+// Issue 30, item 6: one state per job (harness/plan/sweep_job_state.h) for
 // status, resume and report: a run without a trajectory, a failed job, a
 // running one and a corrupt record, each in the same words everywhere.
 TEST(Sweep, StatusResumeAndReportAgreeOnEachJobsState) {

@@ -2,9 +2,9 @@
 // Helpers for the detector tests: where the shared real data is, and a
 // scratch folder removed at the end of a test.
 #include <filesystem>
-#include <fstream>
-#include <random>
 #include <string>
+
+#include "common/testing/scratch_folder.h"
 
 namespace depot::slam::test {
 
@@ -34,37 +34,7 @@ inline bool have_shared_data() {
                    << " (needs models/ and tum/fr3_walking_xyz_frame/)";                     \
   } while (0)
 
-// A fresh folder under the system temp dir, removed on destruction.
-class TempDir {
- public:
-  TempDir() {
-    std::random_device rd;
-    path_ = std::filesystem::temp_directory_path() /
-            ("depot_detect_test_" + std::to_string(rd()) + std::to_string(rd()));
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-  std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(file(name), std::ios::binary) << text;
-    return file(name);
-  }
-  // `bytes` pseudo-random bytes from a fixed seed (same file every run).
-  std::string write_random(const std::string& name, size_t bytes, unsigned seed = 7) const {
-    std::mt19937 gen(seed);
-    std::string s(bytes, '\0');
-    for (char& c : s) c = static_cast<char>(gen() & 0xFF);
-    return write(name, s);
-  }
-
- private:
-  std::filesystem::path path_;
-};
+// A scratch folder removed at the end of a test (common/testing).
+using TempDir = ::depot::testkit::ScratchFolder;
 
 }  // namespace depot::slam::test

@@ -1,7 +1,7 @@
 // libFuzzer target: a sweep's description as its folder stores it
 // (sweep.json, read back by `sweep resume` and `sweep status` as
-// tools/harness/sweep_plan.cc's read_spec does) and the --vary / --set
-// levels of `depot sweep run` (tools/harness/sweep_spec.h): each line of
+// tools/harness/plan/sweep_plan.cc's read_spec does) and the --vary / --set
+// levels of `depot sweep run` (tools/harness/plan/sweep_spec.h): each line of
 // the input is one such option's value.
 #include <cstddef>
 #include <cstdint>
@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/fuzz/fuzz_support.h"
-#include "tools/harness/sweep_spec.h"
+#include "tools/harness/plan/sweep_spec.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

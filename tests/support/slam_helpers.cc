@@ -13,11 +13,11 @@ SlamOutcome run_slam_mode(const std::string& dataset, slam::RejectionMode mode, 
   // the tests exercise its wiring: the default `--detector sim` (the shipped,
   // calibrated error model) and the depot class table.
   runner::RunOptions options;
-  options.dataset = dataset;
-  options.mode = slam::rejection_mode_name(mode);
-  options.sync = !threaded;
+  options.input.dataset = dataset;
+  options.rejection.mode = slam::rejection_mode_name(mode);
+  options.input.sync = !threaded;
   options.quiet = true;
-  options.rejection = params;
+  options.rejection.params = params;
   const runner::RunSummary s = runner::run_sequence(options);
   SlamOutcome r;
   r.score = s.score;

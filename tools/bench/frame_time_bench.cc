@@ -64,11 +64,11 @@ int main(int argc, char** argv) {
       depot::sim::render_dataset(scenario, request);
       for (const std::string& mode : mode_list) {
         depot::runner::RunOptions options;
-        options.dataset = request.dataset.output;
-        options.mode = mode;
-        options.frames = frames;
+        options.input.dataset = request.dataset.output;
+        options.rejection.mode = mode;
+        options.input.frames = frames;
         options.quiet = true;
-        options.rate_hz = rate_hz;
+        options.pacing.rate_hz = rate_hz;
         const depot::runner::RunSummary s = depot::runner::run_sequence(options);
         const double ratio = s.median_ms > 0 ? s.p95_ms / s.median_ms : 0;
         over_goal += ratio > 3.0;

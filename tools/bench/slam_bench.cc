@@ -106,19 +106,19 @@ int main(int argc, char** argv) {
       // frame by frame; each frame tracked as it arrives (no run-ahead), so
       // the detector's wait is measured as the tracker sees it.
       depot::runner::RunOptions options;
-      options.dataset = dataset;
-      options.mode = run_mode;
-      options.detector = detector_type;
-      options.rejection.person_mask = person_mask_source;
-      options.sync = sync;
-      options.loop_closing = loop_closing;
-      options.frames = n;
+      options.input.dataset = dataset;
+      options.rejection.mode = run_mode;
+      options.perception.detector = detector_type;
+      options.rejection.params.person_mask = person_mask_source;
+      options.input.sync = sync;
+      options.input.loop_closing = loop_closing;
+      options.input.frames = n;
       options.quiet = true;
-      options.run_ahead = false;
+      options.pacing.run_ahead = false;
       m.rss_start = rss_mb();
-      options.on_frame = [&](size_t i, const depot::slam::TrackResult& r,
-                             const depot::slam::RejectionFilter* filter,
-                             const depot::slam::System& system) {
+      options.hooks.on_frame = [&](size_t i, const depot::slam::TrackResult& r,
+                                   const depot::slam::RejectionFilter* filter,
+                                   const depot::slam::System& system) {
         m.lost += r.state == depot::slam::TrackingState::kLost;
         m.total.push_back(r.timing.total_ms);
         m.extract.push_back(r.timing.extract_ms);
@@ -134,8 +134,8 @@ int main(int argc, char** argv) {
         }
         if (i == n / 10) m.rss_early = rss_mb(), m.kf_early = system.n_keyframes();
       };
-      options.after_run = [&](depot::slam::System& system,
-                              const depot::slam::TumSequence& sequence) {
+      options.hooks.after_run = [&](depot::slam::System& system,
+                                    const depot::slam::TumSequence& sequence) {
         if (probe_relocalisation) {
           cv::Mat bgr, depth;
           sequence.load(0, bgr, depth);
@@ -239,15 +239,15 @@ int main(int argc, char** argv) {
       // The runner's loop with its emulated camera, run-ahead off then on.
       auto run_at_rate = [&](bool run_ahead) {
         depot::runner::RunOptions options;
-        options.dataset = dataset;
-        options.mode = mode;
-        options.detector = detector_type;
-        options.frames = n;
-        options.sync = sync;
+        options.input.dataset = dataset;
+        options.rejection.mode = mode;
+        options.perception.detector = detector_type;
+        options.input.frames = n;
+        options.input.sync = sync;
         options.quiet = true;
-        options.rate_hz = rate_hz;
-        options.rejection.person_mask = person_mask_source;
-        options.run_ahead = run_ahead;
+        options.pacing.rate_hz = rate_hz;
+        options.rejection.params.person_mask = person_mask_source;
+        options.pacing.run_ahead = run_ahead;
         return depot::runner::run_sequence(options);
       };
       const depot::runner::RunSummary off = run_at_rate(false), on = run_at_rate(true);

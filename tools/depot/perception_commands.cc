@@ -35,8 +35,9 @@ namespace {
 const OutputKind kReportKind{"detector report", "report.html", {"report.html", "report.md"}};
 
 struct DetectorArgs {
-  runner::RunOptions detector;  // dataset, detector type, its config and settings
-  std::string images;           // hand labels YAML
+  std::string dataset;                // a simulated dataset
+  runner::PerceptionChoice detector;  // detector type, its config and settings
+  std::string images;                 // hand labels YAML
   std::string class_map;
   size_t every = 1;
   std::string json, report;
@@ -45,7 +46,7 @@ struct DetectorArgs {
 
 struct CalibrateArgs {
   std::vector<std::string> datasets;
-  runner::RunOptions detector;  // detector type, its config and settings
+  runner::PerceptionChoice detector;  // detector type, its config and settings
   std::string class_map;
   size_t every = 1;
   std::string output;
@@ -73,7 +74,7 @@ std::string every_text(size_t every, size_t frames) {
 
 void run_detector_eval(DetectorArgs& a) {
   const std::string& type = a.detector.detector;
-  const std::string& dataset = a.detector.dataset;
+  const std::string& dataset = a.dataset;
   require_input(dataset, a.images);
   if (type == "sim" && dataset.empty())
     fail_usage("--detector sim",
@@ -90,7 +91,7 @@ void run_detector_eval(DetectorArgs& a) {
   outputs.add_file("--json", a.json);
   outputs.add_folder("--report", a.report);
   outputs.check();
-  std::unique_ptr<slam::Detector> detector = runner::make_detector(a.detector, type);
+  std::unique_ptr<slam::Detector> detector = runner::make_detector(a.detector, dataset, type);
   std::optional<StagedFile> json;
   if (!a.json.empty()) json.emplace(a.json);
   std::optional<StagedDirectory> report;
@@ -153,12 +154,13 @@ void run_calibrate(CalibrateArgs& a) {
   request.mapping = mapping;
   request.quiet = a.quiet;
   std::string detector_config = a.detector.detector_config;
+  std::string sim_dataset;  // the one the simulated detector reads
   if (type == "sim") {
     // The simulated detector fitted to itself: a check of the fit.
     if (a.datasets.size() != 1)
       fail_usage("--detector sim", "calibrates against one DATASET (the one it reads)");
     perception::check_calibration_dataset(a.datasets.front());
-    a.detector.dataset = a.datasets.front();
+    sim_dataset = a.datasets.front();
     request.base = runner::sim_detector_config(a.detector);
     request.min_confidence = request.base.min_confidence;
     request.reads_pixels = false;
@@ -169,7 +171,7 @@ void run_calibrate(CalibrateArgs& a) {
   }
   check_output_file(a.output);
   for (const std::string& d : a.datasets) perception::check_calibration_dataset(d);
-  std::unique_ptr<slam::Detector> detector = runner::make_detector(a.detector, type);
+  std::unique_ptr<slam::Detector> detector = runner::make_detector(a.detector, sim_dataset, type);
   StagedFile out(a.output);
 
   std::string config_text;
@@ -255,7 +257,7 @@ void register_perception_eval_commands(CLI::App* group) {
       "detector",
       "Score a detector against a simulated dataset's boxes.txt and/or hand-labelled images: "
       "recall and precision per class at IoU 0.5, by box height and visible fraction, confusion");
-  det->add_option("DATASET", d->detector.dataset, "Simulated dataset folder (boxes.txt)");
+  det->add_option("DATASET", d->dataset, "Simulated dataset folder (boxes.txt)");
   det->add_option("--images", d->images,
                   "Hand-labelled images YAML (e.g. eval/data/real_labels.yaml): the real side");
   det->add_option("--detector", d->detector.detector,

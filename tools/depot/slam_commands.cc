@@ -72,40 +72,42 @@ struct RunArgs {
 // --dense-mask's default follows the mode: the rejection's masks where it
 // makes them, else none (plain orb and orb+lk make none), said once.
 void choose_dense_mask(RunArgs& a, const CLI::App& cmd) {
-  if (a.options.dense_map.empty()) return;
-  const slam::RejectionMode m = slam::parse_rejection_mode(a.options.mode);
+  if (a.options.outputs.dense_map.empty()) return;
+  const slam::RejectionMode m = slam::parse_rejection_mode(a.options.rejection.mode);
   const bool masks = m != slam::RejectionMode::kOrb && m != slam::RejectionMode::kOrbLk;
   if (cmd.count("--dense-mask")) {
-    if (a.options.dense_mask == "rejection" && !masks)
+    if (a.options.outputs.dense_mask == "rejection" && !masks)
       fail_usage("--dense-mask rejection",
-                 "mode " + a.options.mode +
+                 "mode " + a.options.rejection.mode +
                      " leaves no moving mask (orb+yolo, full and masked do); give --dense-mask "
                      "labels or none");
     return;
   }
   if (masks) return;
-  a.options.dense_mask = "none";
+  a.options.outputs.dense_mask = "none";
   if (!a.options.quiet)
     std::fprintf(stderr,
                  "depot slam run: mode %s rejects nothing, so the dense map keeps every pixel "
                  "(--dense-mask labels leaves a simulated dataset's movers out)\n",
-                 a.options.mode.c_str());
+                 a.options.rejection.mode.c_str());
 }
 
 // --detector-set keys are checked against the simulated detector's table
 // before any work: a wrong key is a wrong command line, not a failed run.
 void check_detector_settings(const runner::RunOptions& o) {
-  if (o.detector_overrides.empty()) return;
-  const std::string type = o.detector.empty() ? "sim" : o.detector;
+  if (o.perception.detector_overrides.empty()) return;
+  const std::string type = o.perception.detector.empty() ? "sim" : o.perception.detector;
   if (type != "sim")
     fail_usage("--detector-set", "applies to the simulated detector only (edit the " + type +
                                      " detector's YAML instead)");
   // The file's own problems are a failed read (exit 1); the overrides' a usage error.
   const slam::SimDetectorConfig base = slam::load_sim_detector_config_file(
-      o.detector_config.empty() ? runner::default_detector_config("sim") : o.detector_config);
+      o.perception.detector_config.empty() ? runner::default_detector_config("sim")
+                                           : o.perception.detector_config);
   try {
-    slam::load_sim_detector_config(overrides_to_node(o.detector_overrides, "--detector-set"),
-                                   "--detector-set", base);
+    slam::load_sim_detector_config(
+        overrides_to_node(o.perception.detector_overrides, "--detector-set"), "--detector-set",
+        base);
   } catch (const Error& e) {
     throw CLI::ValidationError(e.what());
   }
@@ -121,35 +123,35 @@ void run_slam_system(const RunArgs& a, const CLI::App& cmd) {
     fail_usage(name, "has no effect with --system (the system's own file sets how it runs)");
   }
   OutputPaths outputs;
-  outputs.add_input_folder("the dataset", a.options.dataset);
+  outputs.add_input_folder("the dataset", a.options.input.dataset);
   outputs.add_file("-o", a.output);
   outputs.add_file("the states file of -o", slam::frame_states_path(a.output));
   outputs.add_file("the system log of -o", system_log_path(a.output));
-  outputs.add_file("--keypoints", a.options.keypoints_csv);
+  outputs.add_file("--keypoints", a.options.outputs.keypoints_csv);
   outputs.check();
   SystemRunArgs s;
-  s.dataset = a.options.dataset;
+  s.dataset = a.options.input.dataset;
   s.system = a.system;
   s.output = a.output;
-  s.keypoints = a.options.keypoints_csv;
+  s.keypoints = a.options.outputs.keypoints_csv;
   s.quiet = a.options.quiet;
   run_external_system(s);
 }
 
 void run_slam(RunArgs& a, const CLI::App& cmd) {
   if (!a.system.empty()) return run_slam_system(a, cmd);
-  check_options_used_by_mode(a.options.mode, cmd);
+  check_options_used_by_mode(a.options.rejection.mode, cmd);
   if (cmd.count("--segmenter") &&
-      a.options.rejection.person_mask == slam::RejectionParams::PersonMask::kDepth)
+      a.options.rejection.params.person_mask == slam::RejectionParams::PersonMask::kDepth)
     fail_usage("--segmenter",
                "has no effect with --person-mask depth (choose segmentation or both)");
-  if (a.options.dense_map.empty())
+  if (a.options.outputs.dense_map.empty())
     for (const char* option : {"--dense-mask", "--dense-voxel", "--dense-max-depth",
                                "--dense-min-views", "--dense-no-free-space"})
       if (cmd.count(option)) fail_usage(option, "has no effect without --dense-map");
-  if (a.options.localise_only && a.options.load_map.empty())
+  if (a.options.map.localise_only && a.options.map.load_map.empty())
     fail_usage("--localise-only", "needs a map to localise in (--load-map M)");
-  if (a.options.localise_only && !a.options.dense_map.empty())
+  if (a.options.map.localise_only && !a.options.outputs.dense_map.empty())
     fail_usage("--dense-map",
                "has nothing to fuse with --localise-only (a localisation run adds no keyframes, "
                "and a saved map keeps no depth images; make the dense map in the run that builds "
@@ -161,34 +163,35 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
   const std::string states_path = slam::frame_states_path(a.output);
   const std::string atlas_path = slam::atlas_trajectory_path(a.output);
   OutputPaths outputs;
-  outputs.add_input_folder("the dataset", a.options.dataset);
-  outputs.add_input("--load-map", a.options.load_map);
-  outputs.add_input("--settings", a.options.settings);
-  outputs.add_input("--vocabulary", a.options.vocabulary);
+  outputs.add_input_folder("the dataset", a.options.input.dataset);
+  outputs.add_input("--load-map", a.options.map.load_map);
+  outputs.add_input("--settings", a.options.input.settings);
+  outputs.add_input("--vocabulary", a.options.input.vocabulary);
   outputs.add_file("-o", a.output);
   outputs.add_file("the states file of -o", states_path);
   outputs.add_file("the atlas trajectory of -o", atlas_path);
   outputs.add_file("--keyframes", a.keyframes);
-  outputs.add_file("--stats", a.options.stats_csv);
-  outputs.add_file("--keypoints", a.options.keypoints_csv);
-  outputs.add_file("--dense-map", a.options.dense_map);
-  outputs.add_file("--save-map", a.options.save_map);
-  outputs.add_folder("--overlays", a.options.overlays);
+  outputs.add_file("--stats", a.options.outputs.stats_csv);
+  outputs.add_file("--keypoints", a.options.outputs.keypoints_csv);
+  outputs.add_file("--dense-map", a.options.outputs.dense_map);
+  outputs.add_file("--save-map", a.options.map.save_map);
+  outputs.add_folder("--overlays", a.options.outputs.overlays);
   outputs.check();
   for (const std::string* path : std::initializer_list<const std::string*>{
-           &a.output, &states_path, &atlas_path, &a.keyframes, &a.options.stats_csv,
-           &a.options.keypoints_csv, &a.options.dense_map, &a.options.save_map})
+           &a.output, &states_path, &atlas_path, &a.keyframes, &a.options.outputs.stats_csv,
+           &a.options.outputs.keypoints_csv, &a.options.outputs.dense_map, &a.options.map.save_map})
     if (!path->empty()) check_output_file(*path);
-  if (!a.options.overlays.empty())
-    check_replaceable(a.options.overlays, runner::overlay_folder_kind(), false);
-  if (cmd.count("--frames")) a.options.frames = a.frames;
+  if (!a.options.outputs.overlays.empty())
+    check_replaceable(a.options.outputs.overlays, runner::overlay_folder_kind(), false);
+  if (cmd.count("--frames")) a.options.input.frames = a.frames;
   if (!a.options.quiet)
-    std::fprintf(stderr, "depot slam run: %s, mode %s\n", a.options.dataset.c_str(),
-                 a.options.mode.c_str());
+    std::fprintf(stderr, "depot slam run: %s, mode %s\n", a.options.input.dataset.c_str(),
+                 a.options.rejection.mode.c_str());
   runner::RunSummary s = runner::run_sequence(a.options);
   // The trajectory, its states and the atlas trajectory appear together:
   // all staged, then committed.
-  const std::string header = "depot-slam (" + a.options.mode + ") of " + a.options.dataset;
+  const std::string header =
+      "depot-slam (" + a.options.rejection.mode + ") of " + a.options.input.dataset;
   StagedFile trajectory(a.output), states(states_path), atlas(atlas_path);
   trajectory.stream() << format_tum_trajectory(s.trajectory, header + ": tracked frames only");
   states.stream() << slam::format_frame_states(s.frame_states,
@@ -205,9 +208,10 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
   std::printf(
       "tracked %zu of %zu frames (%.1f %%; %d lost, %d relocalised) in mode %s: %zu keyframes, %zu "
       "map points; per frame median %.1f ms, p95 %.1f ms (extraction %.1f, tracking %.1f",
-      s.tracked, s.frames, 100.0 * s.tracked_share(), s.lost, s.relocalized, a.options.mode.c_str(),
-      s.keyframes, s.map_points, s.median_ms, s.p95_ms, s.extract_ms, s.track_ms);
-  if (a.options.mode != "orb")
+      s.tracked, s.frames, 100.0 * s.tracked_share(), s.lost, s.relocalized,
+      a.options.rejection.mode.c_str(), s.keyframes, s.map_points, s.median_ms, s.p95_ms,
+      s.extract_ms, s.track_ms);
+  if (a.options.rejection.mode != "orb")
     std::printf(
         ", rejection %.1f incl. flow %.1f, waited %.1f (p95 %.1f) for the %s detector "
         "taking %.1f",
@@ -237,21 +241,21 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
       "(a frame relocalised there)\n",
       merges.empty() ? "" : ")", s.merges_unconfirmed, s.maps_rejoined,
       s.maps_rejoined == 1 ? "" : "s");
-  if (!a.options.dense_map.empty())
+  if (!a.options.outputs.dense_map.empty())
     std::printf("dense map: %zu points from %d keyframes (masks: %s%s%s), wrote %s\n",
-                s.dense_points, s.dense_keyframes, a.options.dense_mask.c_str(),
+                s.dense_points, s.dense_keyframes, a.options.outputs.dense_mask.c_str(),
                 s.dense_left_out ? "; left out: " : "",
                 s.dense_left_out ? (std::to_string(s.dense_left_out) +
                                     " of the loaded map's keyframes, with no frame in this "
                                     "dataset or no rejection mask of this run")
                                        .c_str()
                                  : "",
-                a.options.dense_map.c_str());
-  if (a.options.rate_hz > 0) {
+                a.options.outputs.dense_map.c_str());
+  if (a.options.pacing.rate_hz > 0) {
     std::printf("input %g Hz, run-ahead %s: %zu frames handled after their turn\n",
-                a.options.rate_hz, a.options.run_ahead ? "on" : "off", s.late_frames);
+                a.options.pacing.rate_hz, a.options.pacing.run_ahead ? "on" : "off", s.late_frames);
   }
-  if (s.scored && a.options.mode != "orb") {
+  if (s.scored && a.options.rejection.mode != "orb") {
     print_rejection_vs_truth(s.score);
     const eval::RejectionScore& d = s.score_with_depth;
     const long moving = s.score.true_positive + s.score.false_negative;
@@ -266,46 +270,51 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
 }  // namespace
 
 void add_rejection_options(CLI::App* cmd, runner::RunOptions& o) {
-  cmd->add_option("--mode", o.mode,
+  cmd->add_option("--mode", o.rejection.mode,
                   "Rejection mode: the paper's ablation (orb = plain ORB-SLAM2, no rejection; "
                   "orb+yolo, orb+lk, full) or masked (objects segmented inside tracked boxes)")
       ->check(CLI::IsMember({"orb", "orb+yolo", "orb+lk", "full", "masked"}));
   cmd->add_option(
-         "--detector", o.detector,
+         "--detector", o.perception.detector,
          "Detector: sim (simulated datasets), darknet (Yolo-Fastest), xl (Yolo-Fastest XL), "
          "fastestdet, yolov5, file")
       ->default_str("sim on simulated datasets, else darknet");
-  cmd->add_option("--detector-config", o.detector_config,
+  cmd->add_option("--detector-config", o.perception.detector_config,
                   "Detector YAML (dnn models, or the simulated detector)")
       ->default_str("scenes/detectors/ of the detector");
-  cmd->add_option("--detections", o.detections, "Detections file for --detector file");
-  cmd->add_option("--classes", o.classes, "A-priori class table YAML")
+  cmd->add_option("--detections", o.perception.detections, "Detections file for --detector file");
+  cmd->add_option("--classes", o.perception.classes, "A-priori class table YAML")
       ->default_str("scenes/apriori/depot.yaml for sim, else coco.yaml");
-  cmd->add_option("--detector-seed", o.detector_seed, "Seed of the simulated detector's errors");
+  cmd->add_option("--detector-seed", o.perception.detector_seed,
+                  "Seed of the simulated detector's errors");
   add_detector_set_option(
-      cmd, o.detector_overrides,
+      cmd, o.perception.detector_overrides,
       "Change a simulated-detector key, e.g. --detector-set miss_rate=0.2 (repeatable)");
-  cmd->add_option("--settings", o.settings, "Settings YAML")
+  cmd->add_option("--settings", o.input.settings, "Settings YAML")
       ->default_str("the dataset's calibration.yaml");
   const slam::RejectionSetting& margin = setting("background_margin");
-  cmd->add_option("--background-margin", margin.real(o.rejection), margin.help)
+  cmd->add_option("--background-margin", margin.real(o.rejection.params), margin.help)
       ->check(CLI::Range(margin.lo, margin.hi));
-  cmd->add_flag("--ego-flow", setting("ego_flow").flag(o.rejection), setting("ego_flow").help);
-  cmd->add_flag("--test-static", setting("test_static").flag(o.rejection),
+  cmd->add_flag("--ego-flow", setting("ego_flow").flag(o.rejection.params),
+                setting("ego_flow").help);
+  cmd->add_flag("--test-static", setting("test_static").flag(o.rejection.params),
                 setting("test_static").help);
   cmd->add_option_function<std::string>(
          "--person-mask",
-         [&o](const std::string& v) { o.rejection.person_mask = slam::parse_person_mask(v); },
+         [&o](const std::string& v) {
+           o.rejection.params.person_mask = slam::parse_person_mask(v);
+         },
          setting("person_mask").help)
       ->check(CLI::IsMember({"depth", "segmentation", "both"}))
       ->default_str("depth");
-  cmd->add_option("--segmenter", o.segmenter, "masked: person segmenter YAML")
+  cmd->add_option("--segmenter", o.perception.segmenter, "masked: person segmenter YAML")
       ->default_str("scenes/segmenters/selfie.yaml");
   cmd->add_option_function<std::vector<std::string>>(
       "--rejection-set",
       [&o](const std::vector<std::string>& texts) {
         for (const auto& t : texts)
-          slam::apply_rejection_setting(o.rejection, parse_yaml_override(t, "--rejection-set"),
+          slam::apply_rejection_setting(o.rejection.params,
+                                        parse_yaml_override(t, "--rejection-set"),
                                         "--rejection-set " + t);
       },
       "Change a rejection setting as a sweep's rejection.KEY, e.g. --rejection-set "
@@ -314,7 +323,7 @@ void add_rejection_options(CLI::App* cmd, runner::RunOptions& o) {
           slam::rejection_setting_keys() +
           "; each explained in slam/reject/rejection_settings.cc)");
   cmd->add_option_function<std::string>(
-         "--mapping", [&o](const std::string& v) { o.sync = v == "sync"; },
+         "--mapping", [&o](const std::string& v) { o.input.sync = v == "sync"; },
          "Local mapping: threaded (its own thread, as ORB-SLAM2; faster, not reproducible) or "
          "sync (in the tracking thread, reproducible)")
       ->check(CLI::IsMember({"sync", "threaded"}))
@@ -327,7 +336,7 @@ void register_slam_commands(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
   CLI::App* run =
       slam->add_subcommand("run", "Track a TUM RGB-D folder and write the trajectory (TUM format)");
-  run->add_option("dataset", args->options.dataset,
+  run->add_option("dataset", args->options.input.dataset,
                   "TUM RGB-D folder (associations.txt or rgb.txt + depth.txt)")
       ->required();
   run->add_option("-o,--output", args->output,
@@ -338,60 +347,61 @@ void register_slam_commands(CLI::App& app) {
   run->add_option("--frames", args->frames, "Only the first N frames")
       ->check(CLI::Range(1, 10000000))
       ->default_str("all");
-  run->add_option("--stats", args->options.stats_csv,
+  run->add_option("--stats", args->options.outputs.stats_csv,
                   "Per-frame statistics CSV (|Z| |Q| |Q->P| |P|, flow, times)");
-  run->add_option("--keypoints", args->options.keypoints_csv,
+  run->add_option("--keypoints", args->options.outputs.keypoints_csv,
                   "Per-keypoint CSV: position, set (Z/Q/P), kept, depth and, on simulated data, "
                   "whether it is on a moving object or its boundary, and the instance there");
-  run->add_option("--overlays", args->options.overlays,
+  run->add_option("--overlays", args->options.outputs.overlays,
                   "Folder of per-frame pictures of the rejection (boxes, object masks, keypoints "
                   "coloured by decision and, on simulated data, by truth)");
-  run->add_option("--overlays-every", args->options.overlays_every, "A picture of every n-th frame")
+  run->add_option("--overlays-every", args->options.outputs.overlays_every,
+                  "A picture of every n-th frame")
       ->check(CLI::Range(1, 1000000));
-  run->add_option("--vocabulary", args->options.vocabulary,
+  run->add_option("--vocabulary", args->options.input.vocabulary,
                   "Place-recognition vocabulary (default: the settings' place_recognition."
                   "vocabulary, else the one the build trained; `depot slam vocabulary train`)");
   run->add_flag_callback(
-      "--no-loop-closing", [args] { args->options.loop_closing = false; },
+      "--no-loop-closing", [args] { args->options.input.loop_closing = false; },
       "Do not detect or close loops (place recognition still relocalises)");
-  run->add_option("--load-map", args->options.load_map,
+  run->add_option("--load-map", args->options.map.load_map,
                   "Start from a map saved by --save-map (same vocabulary and camera); the first "
                   "frame relocalises in it");
-  run->add_flag("--localise-only", args->options.localise_only,
+  run->add_flag("--localise-only", args->options.map.localise_only,
                 "Track against the loaded map without changing it: no keyframes, no points");
-  run->add_option("--save-map", args->options.save_map,
+  run->add_option("--save-map", args->options.map.save_map,
                   "Write the map at the end (versioned binary with a checksum; staged)");
-  run->add_option("--dense-map", args->options.dense_map,
+  run->add_option("--dense-map", args->options.outputs.dense_map,
                   "Write a dense static map at the end (PLY): the final keyframes' depth fused "
                   "into voxels, moving pixels left out (--dense-mask)");
-  run->add_option("--dense-mask", args->options.dense_mask,
+  run->add_option("--dense-mask", args->options.outputs.dense_mask,
                   "What leaves moving pixels out of the dense map: the rejection's masks "
                   "(orb+yolo, full, masked), the simulated dataset's labels, or none")
       ->check(CLI::IsMember({"rejection", "labels", "none"}))
       ->capture_default_str();
-  run->add_option("--dense-voxel", args->options.dense.voxel_m, "Dense map voxel edge (m)")
+  run->add_option("--dense-voxel", args->options.outputs.dense.voxel_m, "Dense map voxel edge (m)")
       ->check(CLI::Range(0.001, 1.0))
       ->capture_default_str();
-  run->add_option("--dense-max-depth", args->options.dense.max_depth_m,
+  run->add_option("--dense-max-depth", args->options.outputs.dense.max_depth_m,
                   "Depth beyond this (m) stays out of the dense map")
       ->check(CLI::Range(0.1, 100.0))
       ->capture_default_str();
-  run->add_option("--dense-min-views", args->options.dense.min_views,
+  run->add_option("--dense-min-views", args->options.outputs.dense.min_views,
                   "Dense map voxels seen from fewer keyframes are left out")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   run->add_flag_callback(
-      "--dense-no-free-space", [args] { args->options.dense.free_space = false; },
+      "--dense-no-free-space", [args] { args->options.outputs.dense.free_space = false; },
       "Keep dense map voxels that other keyframes see through (by default they are left out: "
       "something was there and moved away)");
   run->add_flag("-q,--quiet", args->options.quiet, "No progress line");
-  run->add_option("--rate", args->options.rate_hz,
+  run->add_option("--rate", args->options.pacing.rate_hz,
                   "Input rate (Hz) of an emulated camera: frame i arrives at i / HZ s (0 = as "
                   "fast as possible)")
       ->check(CLI::Range(0.0, 1000.0))
       ->capture_default_str();
   run->add_flag_callback(
-      "--no-run-ahead", [args] { args->options.run_ahead = false; },
+      "--no-run-ahead", [args] { args->options.pacing.run_ahead = false; },
       "Track each frame as it arrives, its detector started then (default: hand frame i+1 to the "
       "detector before tracking frame i, tracking it once frame i+1 has arrived)");
   add_rejection_options(run, args->options);

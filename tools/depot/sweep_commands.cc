@@ -12,13 +12,13 @@
 #include "common/interrupt.h"
 #include "tools/depot/commands.h"
 #include "tools/depot/paths.h"
-#include "tools/harness/slurm_scheduler.h"
-#include "tools/harness/sweep_jobs.h"
-#include "tools/harness/sweep_plan.h"
-#include "tools/harness/sweep_report.h"
-#include "tools/harness/sweep_runner.h"
-#include "tools/harness/sweep_spec.h"
-#include "tools/harness/sweep_status.h"
+#include "tools/harness/schedule/slurm_scheduler.h"
+#include "tools/harness/job/sweep_jobs.h"
+#include "tools/harness/plan/sweep_plan.h"
+#include "tools/harness/report/sweep_report.h"
+#include "tools/harness/schedule/sweep_runner.h"
+#include "tools/harness/plan/sweep_spec.h"
+#include "tools/harness/schedule/sweep_status.h"
 #include "tools/system/system_spec.h"
 
 #include "sim/scenario/scenario_loader.h"
@@ -298,7 +298,7 @@ void register_sweep_commands(CLI::App& app) {
     const harness::SweepLayout layout{*status_folder};
     const harness::SweepPlan plan = harness::make_sweep_plan(harness::read_spec(layout));
     const harness::SweepStatus s = harness::read_sweep_status(plan, layout);
-    // The words of the report (harness/sweep_job_state.h).
+    // The words of the report (harness/plan/sweep_job_state.h).
     std::printf("%s: %zu jobs: %zu done", layout.root.c_str(), s.jobs, s.done);
     if (s.without_trajectory) std::printf(" (%zu without a trajectory)", s.without_trajectory);
     if (s.on_slurm)

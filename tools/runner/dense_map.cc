@@ -1,6 +1,7 @@
 #include "tools/runner/dense_map.h"
 
 #include "common/error.h"
+#include "common/staged_file.h"
 
 namespace depot::runner {
 
@@ -56,6 +57,39 @@ DenseMapResult write_dense_map(const std::string& path, const slam::TumSequence&
   slam::write_ply(path, points, "views");
   result.points = points.size();
   return result;
+}
+
+DenseMapBuilder::DenseMapBuilder(const std::string& path, DenseMask mask,
+                                 const slam::DenseCloudParams& params,
+                                 const slam::PinholeCamera& camera,
+                                 const slam::RejectionFilter* filter,
+                                 const eval::MotionTruth* truth, const std::string& dataset,
+                                 const std::string& mode)
+    : path_(path), mask_(mask), params_(params), camera_(camera), filter_(filter), truth_(truth) {
+  check_output_file(path);
+  slam::DenseCloud check_params(camera, params);
+  if (mask == DenseMask::kLabels && !truth)
+    fail(dataset, "has no labels: --dense-mask labels needs a simulated dataset");
+  if (mask == DenseMask::kRejection && (!filter || filter->mode() == slam::RejectionMode::kOrbLk))
+    fail("--dense-mask rejection",
+         "mode " + mode +
+             " leaves no moving mask (orb+yolo, full and masked do); give --dense-mask labels "
+             "or none");
+}
+
+void DenseMapBuilder::on_frame(const FrameRecord& frame) {
+  if (mask_ == DenseMask::kRejection && frame.result.stats.new_keyframe)
+    keyframe_masks_[frame.timestamp] = filter_->moving_mask(frame.bgr.size());
+}
+
+void DenseMapBuilder::on_finish(const slam::System& system, const slam::TumSequence& sequence,
+                                RunSummary& summary) {
+  const DenseMapResult cloud =
+      write_dense_map(path_, sequence, camera_, system.keyframe_trajectory(), mask_,
+                      keyframe_masks_, truth_, params_);
+  summary.dense_points = cloud.points;
+  summary.dense_keyframes = cloud.keyframes;
+  summary.dense_left_out = cloud.without_frame + cloud.without_mask;
 }
 
 }  // namespace depot::runner

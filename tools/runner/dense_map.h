@@ -13,6 +13,8 @@
 #include "eval/motion_truth.h"
 #include "slam/dense/dense_cloud.h"
 #include "slam/io/tum_sequence.h"
+#include "slam/reject/rejection_filter.h"
+#include "tools/runner/frame_observer.h"
 
 namespace depot::runner {
 
@@ -42,5 +44,31 @@ DenseMapResult write_dense_map(const std::string& path, const slam::TumSequence&
                                const std::map<double, cv::Mat>& rejection_masks,
                                const eval::MotionTruth* truth,
                                const slam::DenseCloudParams& params);
+
+// `--dense-map F.ply` as an observer of the run: keeps the rejection's
+// masks of the frames made keyframes and writes the map on on_finish, at
+// the keyframes' final poses.
+class DenseMapBuilder : public FrameObserver {
+ public:
+  // Checks before any work: `path` writable, the cloud's parameters, labels
+  // only on a simulated dataset (`truth`), rejection masks only from a
+  // filter that makes them (`mode` names it in the error).
+  DenseMapBuilder(const std::string& path, DenseMask mask, const slam::DenseCloudParams& params,
+                  const slam::PinholeCamera& camera, const slam::RejectionFilter* filter,
+                  const eval::MotionTruth* truth, const std::string& dataset,
+                  const std::string& mode);
+  void on_frame(const FrameRecord& frame) override;
+  void on_finish(const slam::System& system, const slam::TumSequence& sequence,
+                 RunSummary& summary) override;
+
+ private:
+  std::string path_;
+  DenseMask mask_;
+  slam::DenseCloudParams params_;
+  slam::PinholeCamera camera_;
+  const slam::RejectionFilter* filter_;
+  const eval::MotionTruth* truth_;
+  std::map<double, cv::Mat> keyframe_masks_;  // rejection masks by keyframe timestamp
+};
 
 }  // namespace depot::runner

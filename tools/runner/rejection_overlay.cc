@@ -1,6 +1,13 @@
 #include "tools/runner/rejection_overlay.h"
 
+#include <cstdio>
+#include <filesystem>
+
 #include <opencv2/imgproc.hpp>
+
+#include "common/error.h"
+#include "common/png_codec.h"
+#include "tools/runner/frame_truth.h"
 
 namespace depot::runner {
 
@@ -49,6 +56,34 @@ cv::Mat draw_rejection_overlay(const cv::Mat& bgr, const slam::RejectionFilter& 
     cv::circle(out, kps[i].pt, 2, colour, cv::FILLED);
   }
   return out;
+}
+
+OverlayFolder::OverlayFolder(const std::string& path, size_t every)
+    : path_(path), every_(every), folder_(path, overlay_folder_kind(), false) {
+  const std::filesystem::path staged(folder_.path());
+  std::filesystem::create_directories(staged / "frames");
+  index_.open((staged / "index.txt").string());
+  index_ << "# frame timestamp picture (depot slam run --overlays; colours: "
+            "tools/runner/rejection_overlay.h)\n";
+}
+
+void OverlayFolder::on_frame(const FrameRecord& frame) {
+  if (frame.index % every_ != 0) return;
+  char name[32];
+  std::snprintf(name, sizeof(name), "frames/%06zu.png", frame.index);
+  write_png((std::filesystem::path(folder_.path()) / name).string(),
+            draw_rejection_overlay(frame.bgr, *frame.filter,
+                                   frame.truth ? &frame.truth->labels : nullptr),
+            PngKind::kColor);
+  char row[96];
+  std::snprintf(row, sizeof(row), "%zu %.6f %s\n", frame.index, frame.timestamp, name);
+  index_ << row;
+}
+
+void OverlayFolder::commit() {
+  index_.close();
+  if (!index_) fail(path_, "cannot write index.txt");
+  folder_.commit();
 }
 
 }  // namespace depot::runner
