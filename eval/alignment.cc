@@ -1,20 +1,11 @@
 #include "eval/alignment.h"
 
-#include <Eigen/LU>
+#include <Eigen/Geometry>
 #include <Eigen/SVD>
 
 #include "common/error.h"
 
 namespace depot::eval {
-namespace {
-
-Eigen::Vector3d mean_of(const std::vector<Eigen::Vector3d>& points) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& p : points) sum += p;
-  return sum / static_cast<double>(points.size());
-}
-
-}  // namespace
 
 std::string to_string(AlignmentKind kind) {
   switch (kind) {
@@ -38,35 +29,21 @@ SimilarityTransform align_points(const std::vector<Eigen::Vector3d>& source,
   SimilarityTransform out;
   if (kind == AlignmentKind::kNone) return out;
 
-  const double n = static_cast<double>(source.size());
-  const Eigen::Vector3d source_mean = mean_of(source);
-  const Eigen::Vector3d target_mean = mean_of(target);
-
-  // Cross-covariance (Umeyama eq. 38) and source variance (eq. 36).
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  double source_variance = 0.0;
+  // Umeyama's method (eq. 34-42, a proper rotation even where a reflection
+  // fits better), as Eigen implements it.
+  Eigen::Matrix3Xd from(3, source.size()), to(3, target.size());
   for (size_t k = 0; k < source.size(); ++k) {
-    const Eigen::Vector3d x = source[k] - source_mean;
-    covariance += (target[k] - target_mean) * x.transpose();
-    source_variance += x.squaredNorm();
+    from.col(static_cast<Eigen::Index>(k)) = source[k];
+    to.col(static_cast<Eigen::Index>(k)) = target[k];
   }
-  covariance /= n;
-  source_variance /= n;
-
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(covariance,
-                                              Eigen::ComputeFullU | Eigen::ComputeFullV);
-  // Force a proper rotation (det +1) rather than a reflection (eq. 39-40).
-  Eigen::Vector3d sign(1.0, 1.0, 1.0);
-  if (svd.matrixU().determinant() * svd.matrixV().determinant() < 0.0) sign.z() = -1.0;
-  out.rotation = svd.matrixU() * sign.asDiagonal() * svd.matrixV().transpose();
-
-  if (kind == AlignmentKind::kSimilarity) {
-    if (!(source_variance > 0.0)) {
-      fail("alignment", "cannot estimate a scale: all estimated positions coincide");
-    }
-    out.scale = svd.singularValues().dot(sign) / source_variance;  // eq. 42
-  }
-  out.translation = target_mean - out.scale * (out.rotation * source_mean);  // eq. 41
+  const bool scaled = kind == AlignmentKind::kSimilarity;
+  if (scaled && !((from.colwise() - from.rowwise().mean()).squaredNorm() > 0.0))
+    fail("alignment", "cannot estimate a scale: all estimated positions coincide");
+  const Eigen::Matrix4d transform = Eigen::umeyama(from, to, scaled);
+  const Eigen::Matrix3d scaled_rotation = transform.topLeftCorner<3, 3>();
+  if (scaled) out.scale = scaled_rotation.col(0).norm();
+  out.rotation = scaled_rotation / out.scale;
+  out.translation = transform.topRightCorner<3, 1>();
   return out;
 }
 
