@@ -1,7 +1,5 @@
 #include "tools/harness/plan/sweep_plan.h"
 
-#include <unistd.h>
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -10,6 +8,7 @@
 
 #include "common/error.h"
 #include "common/testing/error_of.h"
+#include "common/testing/scratch_folder.h"
 #include "tools/harness/plan/run_record.h"
 #include "tools/harness/plan/sweep_job_state.h"
 
@@ -94,8 +93,8 @@ TEST(SweepPlan, SendsEachParameterToItsTarget) {
 }
 
 TEST(SweepPlan, AFolderHoldsOneSweepAndRecordsMarkFinishedJobs) {
-  const fs::path root = fs::temp_directory_path() / ("plan_test_" + std::to_string(getpid()));
-  fs::remove_all(root);
+  const testkit::ScratchFolder scratch("plan_test");
+  const fs::path root = scratch.path() / "sweep";
   const SweepLayout layout{root.string()};
   write_or_check_spec(layout, grid_spec());
   write_or_check_spec(layout, grid_spec());  // same sweep: fine
@@ -113,12 +112,11 @@ TEST(SweepPlan, AFolderHoldsOneSweepAndRecordsMarkFinishedJobs) {
   d.id = render.id;
   write_record(layout.dataset_record(render.id), to_json(d));
   EXPECT_TRUE(job_finished(layout, render));
-  fs::remove_all(root);
 }
 
 TEST(SweepJobState, ARecordIsDoneOnlyWhenItReadsBackAsThisJobs) {
-  const fs::path root = fs::temp_directory_path() / ("sweep_job_state_" + std::to_string(getpid()));
-  fs::remove_all(root);
+  const testkit::ScratchFolder scratch("sweep_job_state");
+  const fs::path root = scratch.path() / "sweep";
   const SweepLayout layout{root.string()};
   const SweepPlan plan = make_sweep_plan(grid_spec());
   const SweepJob& render = plan.jobs[0];
@@ -146,7 +144,6 @@ TEST(SweepJobState, ARecordIsDoneOnlyWhenItReadsBackAsThisJobs) {
   d.id = render.id;
   write_record(layout.dataset_record(render.id), to_json(d));
   EXPECT_EQ(job_record_state(layout, render).state, RecordState::kDone);  // the record wins
-  fs::remove_all(root);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // The report from records on disk (synthetic figures, real files): tables,
 // CSVs, plots and the self-contained HTML page.
 #include "tools/harness/report/sweep_report.h"
+#include "common/testing/scratch_folder.h"
 
 #include <gtest/gtest.h>
 
@@ -25,7 +26,8 @@ std::string read(const fs::path& p) {
 }
 
 struct SweepReportTest : ::testing::Test {
-  fs::path root = fs::temp_directory_path() / ("report_test_" + std::to_string(getpid()));
+  testkit::ScratchFolder scratch{"report_test"};
+  fs::path root = scratch.path() / "sweep";
   SweepLayout layout{root.string()};
   SweepPlan plan;
   void SetUp() override {
@@ -60,7 +62,6 @@ struct SweepReportTest : ::testing::Test {
                              "<?xml version=\"1.0\"?>\n<svg id=\"traj-" + job.id + "\"></svg>\n");
     }
   }
-  void TearDown() override { fs::remove_all(root); }
 };
 
 TEST_F(SweepReportTest, WritesTablesCsvPlotsAndOneSelfContainedPage) {

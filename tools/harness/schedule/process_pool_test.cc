@@ -8,15 +8,16 @@
 #include <sstream>
 #include <thread>
 
+#include "common/testing/scratch_folder.h"
+
 namespace fs = std::filesystem;
 
 namespace depot::harness {
 namespace {
 
 struct PoolTest : ::testing::Test {
-  fs::path dir = fs::temp_directory_path() / ("pool_test_" + std::to_string(getpid()));
-  void SetUp() override { fs::create_directories(dir); }
-  void TearDown() override { fs::remove_all(dir); }
+  testkit::ScratchFolder scratch{"pool_test"};
+  const fs::path& dir = scratch.path();
   ProcessJob shell(const std::string& script, const std::string& log,
                    std::vector<size_t> needs = {}) {
     return {{"/bin/sh", "-c", script}, (dir / log).string(), needs};
