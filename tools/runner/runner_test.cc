@@ -147,13 +147,18 @@ TEST(RunSequence, ARunThatTracksNothingFailsAndLeavesNoneOfItsFiles) {
   options.input.sync = true;
   options.quiet = true;
   options.outputs.stats_csv = scratch.file("stats.csv");
+  options.outputs.dense_map = scratch.file("cloud.ply");
+  options.outputs.dense_mask = "none";
+  options.map.save_map = scratch.file("run.map");
   try {
     run_sequence(options);
     FAIL() << "a blank sequence cannot be tracked";
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr(std::string(kNoFrameTracked) + ": tracking never initialised"));
   }
-  EXPECT_FALSE(fs::exists(options.outputs.stats_csv));
+  for (const std::string& file :
+       {options.outputs.stats_csv, options.outputs.dense_map, options.map.save_map})
+    EXPECT_FALSE(fs::exists(file)) << file << " of a run that posed no frame";
 }
 
 TEST(RunSequence, ChecksTheInputBeforeAnyWork) {

@@ -338,12 +338,13 @@ RunSummary run_sequence(const RunOptions& o) {
   progress.finish();
   system.finish();
   if (o.hooks.after_run) o.hooks.after_run(system, sequence);
-  if (!o.map.save_map.empty()) system.save_map(o.map.save_map);
-  for (const auto& observer : observers) observer->on_finish(system, sequence, summary);
   summary.frames = n;
   summary.late_frames = feed.late_frames();
   summarise_system(system, summary);
+  // A run that posed no frame writes nothing: no map, no cloud, no tables.
   if (summary.trajectory.empty()) fail(o.input.dataset, no_frame_tracked(summary, o.map.load_map));
+  if (!o.map.save_map.empty()) system.save_map(o.map.save_map);
+  for (const auto& observer : observers) observer->on_finish(system, sequence, summary);
   for (const auto& observer : observers) observer->commit();
   return summary;
 }

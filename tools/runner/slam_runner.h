@@ -48,7 +48,8 @@ RejectionSetup make_rejection(const RunOptions& options, float scale_factor = 1.
 // Tracks the dataset's frames in order; the run's outputs are written by
 // frame observers (frame_observer.h). Everything is checked before the
 // first frame. Throws depot::Error("<dataset>: no frame tracked: ...") when
-// no frame got a pose; the observers' files then never appear.
+// no frame got a pose, and then writes nothing: no map (--save-map), no
+// dense cloud, none of the observers' files.
 RunSummary run_sequence(const RunOptions& options);
 
 }  // namespace depot::runner
