@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/error.h"
@@ -81,7 +82,8 @@ TEST(StagedDirectory, OverwriteReplacesOnlyAnOutputOfItsKind) {
   EXPECT_EQ(text, "new");
   EXPECT_FALSE(fs::exists(out / "data"));
   for (const auto& e : fs::directory_iterator(out.parent_path()))
-    EXPECT_EQ(e.path().string().find("depot_staged_ours."), std::string::npos) << e.path();
+    EXPECT_THAT(e.path().string(), ::testing::Not(::testing::HasSubstr("depot_staged_ours.")))
+        << e.path();
 
   // A file the kind never writes makes the folder the user's.
   std::ofstream(out / "notes.txt") << "mine";
@@ -99,8 +101,8 @@ TEST(StagedDirectory, RefusesTheCurrentFolderAndItsParents) {
   const std::string error = error_of([&] { StagedDirectory(out.string(), kKind, true); });
   const std::string error_dot = error_of([&] { StagedDirectory(".", kKind, true); });
   fs::current_path(before);
-  EXPECT_NE(error.find("current folder"), std::string::npos) << error;
-  EXPECT_NE(error_dot.find("current folder"), std::string::npos) << error_dot;
+  EXPECT_THAT(error, ::testing::HasSubstr("current folder")) << error;
+  EXPECT_THAT(error_dot, ::testing::HasSubstr("current folder")) << error_dot;
   EXPECT_TRUE(fs::exists(out / "inner"));
 }
 
@@ -170,7 +172,7 @@ TEST(StagedNames, ErrorsNameTheFinalPathNotTheStagedOne) {
   }
   EXPECT_EQ(message, (out / "data/0001.png").string() + ": cannot write; " +
                          (out / "a.txt").string() + " too");
-  EXPECT_EQ(message.find(".partial-"), std::string::npos) << message;
+  EXPECT_THAT(message, ::testing::Not(::testing::HasSubstr(".partial-"))) << message;
   EXPECT_EQ(with_final_names("no path here"), "no path here");
 }
 

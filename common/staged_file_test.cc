@@ -1,5 +1,6 @@
 #include "common/staged_file.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -63,7 +64,7 @@ TEST(StagedFile, AnUnwritableFolderIsAClearError) {
     StagedFile file("/nonexistent/folder/stats.csv");
     FAIL() << "expected an error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("/nonexistent/folder/stats.csv"), std::string::npos)
+    EXPECT_THAT(std::string(e.what()), ::testing::HasSubstr("/nonexistent/folder/stats.csv"))
         << e.what();
   }
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
@@ -78,11 +79,11 @@ TEST(ImageRealism, TableAndPageShowBothRecordings) {
   const Realism b = summarise_realism("real", {measure_frame(noisy_ramp(4.0, 2), {}, {})});
   const std::string table = format_realism_table(a, b);
   EXPECT_NE(table.find("noise sigma, grey 96-127"), std::string::npos) << table;
-  EXPECT_NE(table.find("sim"), std::string::npos) << table;
-  EXPECT_NE(table.find("ratio"), std::string::npos) << table;
+  EXPECT_THAT(table, ::testing::HasSubstr("sim")) << table;
+  EXPECT_THAT(table, ::testing::HasSubstr("ratio")) << table;
   const std::string page = realism_page(a, b);
-  EXPECT_NE(page.find("<svg"), std::string::npos);
-  EXPECT_NE(page.find("Noise by brightness"), std::string::npos);
+  EXPECT_THAT(page, ::testing::HasSubstr("<svg"));
+  EXPECT_THAT(page, ::testing::HasSubstr("Noise by brightness"));
 }
 
 }  // namespace

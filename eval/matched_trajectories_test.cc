@@ -1,5 +1,6 @@
 #include "eval/matched_trajectories.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/error.h"
@@ -42,7 +43,7 @@ TEST(MatchedTrajectories, FewerThanThreePairsIsAnError) {
   const std::vector<StampedPose> est = {gt[3], gt[7]};
   const std::string message =
       error_of([&] { match_trajectories(gt, est, {}, "gt.txt", "est.txt"); });
-  EXPECT_NE(message.find("est.txt: only 2 timestamps match (need at least 3)"), std::string::npos)
+  EXPECT_THAT(message, ::testing::HasSubstr("est.txt: only 2 timestamps match (need at least 3)"))
       << message;
   const std::vector<StampedPose> three = {gt[3], gt[7], gt[9]};
   EXPECT_EQ(match_trajectories(gt, three, {}, "gt.txt", "est.txt").size(), 3u);

@@ -1,5 +1,6 @@
 #include "eval/series_plot.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -43,12 +44,12 @@ TEST(SeriesPlot, DrawsEveryDefinedPointWithLegendAndGaps) {
   EXPECT_EQ(count(svg, "<circle"), 4 + 3 + 2);
   // full has a gap at level 1: two polylines for it, one for orb.
   EXPECT_EQ(count(svg, "<polyline"), 2);  // orb run, full's first run (second is one point)
-  EXPECT_NE(svg.find(">orb<"), std::string::npos);
-  EXPECT_NE(svg.find(">full<"), std::string::npos);
-  EXPECT_NE(svg.find("(log scale)"), std::string::npos);
+  EXPECT_THAT(svg, ::testing::HasSubstr(">orb<"));
+  EXPECT_THAT(svg, ::testing::HasSubstr(">full<"));
+  EXPECT_THAT(svg, ::testing::HasSubstr("(log scale)"));
   // Decades from 0.001 to 10 cover the data.
-  EXPECT_NE(svg.find(">0.001<"), std::string::npos);
-  EXPECT_NE(svg.find(">1<"), std::string::npos);
+  EXPECT_THAT(svg, ::testing::HasSubstr(">0.001<"));
+  EXPECT_THAT(svg, ::testing::HasSubstr(">1<"));
 }
 
 TEST(SeriesPlot, LinearAxisHonoursAFixedRange) {
@@ -56,15 +57,15 @@ TEST(SeriesPlot, LinearAxisHonoursAFixedRange) {
   p.y_lo = 0;
   p.y_hi = 1.5;
   const std::string svg = render_series_plot_svg(p);
-  EXPECT_NE(svg.find(">1.5<"), std::string::npos);
-  EXPECT_EQ(svg.find("(log scale)"), std::string::npos);
+  EXPECT_THAT(svg, ::testing::HasSubstr(">1.5<"));
+  EXPECT_THAT(svg, ::testing::Not(::testing::HasSubstr("(log scale)")));
 }
 
 TEST(SeriesPlot, CategoricalLevelsAreSpacedEvenly) {
   SeriesPlot p = two_modes(true);
   p.x_levels = {"walking_xyz", "walking_rpy", "sitting_xyz", "static"};
   const std::string svg = render_series_plot_svg(p);
-  EXPECT_NE(svg.find(">walking_rpy<"), std::string::npos);
+  EXPECT_THAT(svg, ::testing::HasSubstr(">walking_rpy<"));
 }
 
 TEST(SeriesPlot, RejectsBadInput) {

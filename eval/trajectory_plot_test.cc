@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/error.h"
@@ -36,14 +37,14 @@ TEST(TrajectoryPlot, AteFigureHasThePanelsAxesAndLegend) {
   for (const char* text :
        {">top view (x-y)<", ">side view (x-z)<", ">x (m)<", ">y (m)<", ">z (m)<", ">time (s)<",
         ">ATE (m)<", ">ground truth<", ">start<", ">ATE over time (m)<", "linearGradient"}) {
-    EXPECT_NE(svg.find(text), std::string::npos) << text;
+    EXPECT_THAT(svg, ::testing::HasSubstr(text)) << text;
   }
-  EXPECT_NE(svg.find("run &lt;1&gt; &amp; more.txt"), std::string::npos);  // escaped title
-  EXPECT_EQ(svg.find("run <1>"), std::string::npos);
+  EXPECT_THAT(svg, ::testing::HasSubstr("run &lt;1&gt; &amp; more.txt"));  // escaped title
+  EXPECT_THAT(svg, ::testing::Not(::testing::HasSubstr("run <1>")));
   EXPECT_EQ(count(svg, "<text"), count(svg, "</text>"));
   // Two views, each drawing one coloured segment per consecutive pose pair.
   EXPECT_GE(count(svg, "<line"), 2u * 89u);
-  EXPECT_NE(svg.find(">rmse "), std::string::npos);
+  EXPECT_THAT(svg, ::testing::HasSubstr(">rmse "));
 }
 
 TEST(TrajectoryPlot, RpeFigureHasTranslationAndRotationPanels) {
@@ -55,8 +56,8 @@ TEST(TrajectoryPlot, RpeFigureHasTranslationAndRotationPanels) {
   const std::string path = testing::scratch_path("rpe.svg");
   write_trajectory_plot_svg(path, plot);
   const std::string svg = testing::read_whole_file(path);
-  EXPECT_NE(svg.find(">RPE translation over time (m)<"), std::string::npos);
-  EXPECT_NE(svg.find(">RPE rotation over time (deg)<"), std::string::npos);
+  EXPECT_THAT(svg, ::testing::HasSubstr(">RPE translation over time (m)<"));
+  EXPECT_THAT(svg, ::testing::HasSubstr(">RPE rotation over time (deg)<"));
 }
 
 TEST(TrajectoryPlot, RejectsInconsistentInput) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "tests/support/dataset_reader.h"
@@ -36,7 +37,7 @@ TEST_P(BadFlags, OneErrorLineAndUsageExitCode) {
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   const std::string prefix = "depot: error: " + b.command + (b.command.empty() ? "" : ": ");
   EXPECT_EQ(r.output.rfind(prefix, 0), 0u) << r.output;
-  EXPECT_NE(r.output.find(b.needle), std::string::npos) << r.output;
+  EXPECT_THAT(r.output, ::testing::HasSubstr(b.needle)) << r.output;
 }
 
 const std::vector<BadInvocation> kBadInvocations = {
@@ -127,7 +128,8 @@ TEST(CliHelp, HelpAndVersionExitZero) {
   EXPECT_EQ(version.code, 0) << version.output;
   EXPECT_EQ(version.output.rfind("depot ", 0), 0u) << version.output;
   EXPECT_NE(version.output.find("(git "), std::string::npos) << version.output;
-  EXPECT_EQ(version.output.find("(git unknown)"), std::string::npos) << version.output;
+  EXPECT_THAT(version.output, ::testing::Not(::testing::HasSubstr("(git unknown)")))
+      << version.output;
   EXPECT_EQ(depot("sim render --help").code, 0);
 }
 
@@ -136,11 +138,11 @@ TEST(CliHelp, ShowsDefaults) {
   const DepotResult slam = depot("slam run --help");
   ASSERT_EQ(slam.code, 0);
   for (const char* shown : {"}=orb\n", "}=threaded\n"})
-    EXPECT_NE(slam.output.find(shown), std::string::npos) << shown << "\n" << slam.output;
+    EXPECT_THAT(slam.output, ::testing::HasSubstr(shown)) << shown << "\n" << slam.output;
   const DepotResult sweep = depot("sweep run --help");
   ASSERT_EQ(sweep.code, 0);
   for (const char* shown : {"1000]=3\n", "100000]=300\n", "4096]=640\n", "256]=1\n", "}=sync\n"})
-    EXPECT_NE(sweep.output.find(shown), std::string::npos) << shown << "\n" << sweep.output;
+    EXPECT_THAT(sweep.output, ::testing::HasSubstr(shown)) << shown << "\n" << sweep.output;
   const DepotResult preview = depot("sim preview --help");
   EXPECT_NE(preview.output.find("50]=4\n"), std::string::npos) << preview.output;
   const DepotResult render = depot("sim render --help");

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <thread>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "dataset/dataset_info.h"
@@ -139,7 +140,7 @@ TEST(NoRunWasted, SlamOutputsAreCheckedBeforeTheRun) {
   const std::string missing_folder = temp_path("nowhere") + "/traj.txt";
   DepotResult r = depot("slam run " + data + " -o " + missing_folder + " -q");
   expect_one_error_line(r, "does not exist");
-  EXPECT_EQ(r.output.find("tracked"), std::string::npos);
+  EXPECT_THAT(r.output, ::testing::Not(::testing::HasSubstr("tracked")));
   const std::string traj = temp_path("traj") + ".txt";
   const std::string folder = user_folder("stats_folder");
   r = depot("slam run " + data + " -o " + traj + " --stats " + folder + " -q");
@@ -172,9 +173,9 @@ TEST(NoRunWasted, MissingCalibrationIsNamed) {
   fs::remove(small + "/calibration.yaml");
   DepotResult r = depot("slam run " + small + " -o " + temp_path("t") + ".txt -q");
   expect_one_error_line(r, "160x120");
-  EXPECT_NE(r.output.find("640x480"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("rgb/"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("no calibration.yaml"), std::string::npos) << r.output;
+  EXPECT_THAT(r.output, ::testing::HasSubstr("640x480")) << r.output;
+  EXPECT_THAT(r.output, ::testing::HasSubstr("rgb/")) << r.output;
+  EXPECT_THAT(r.output, ::testing::HasSubstr("no calibration.yaml")) << r.output;
 
   const std::string full = render_small({"depot_static", 4, 640, true});
   fs::remove(full + "/calibration.yaml");
@@ -266,7 +267,7 @@ TEST(Help, SweepShowsProgressFromTheStartAndIsQuietWithQ) {
   EXPECT_LT(started, loud.output.find("[1/")) << "a line before the first job ends";
   const DepotResult quiet = depot(base + "-q -o " + temp_path("quiet"));
   ASSERT_EQ(quiet.code, 0) << quiet.output;
-  EXPECT_EQ(quiet.output.find("sweep:"), std::string::npos) << quiet.output;
+  EXPECT_THAT(quiet.output, ::testing::Not(::testing::HasSubstr("sweep:"))) << quiet.output;
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iterator>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -87,7 +88,7 @@ TEST(CliSim, ListsShippedScenarios) {
        {"depot_walking_xyz", "depot_walking_halfsphere", "depot_walking_rpy",
         "depot_walking_static", "depot_sitting_xyz", "depot_sitting_static", "depot_patrol",
         "depot_patrol_two_laps", "depot_kidnapped", "depot_static"})
-    EXPECT_NE(r.output.find(name), std::string::npos) << name;
+    EXPECT_THAT(r.output, ::testing::HasSubstr(name)) << name;
 }
 
 TEST(CliSim, EglRendersTheSameBytesAsOsMesa) {
@@ -150,11 +151,11 @@ TEST(CliRealism, ComparesARenderWithTheRealFrameAndWritesAPage) {
   ASSERT_EQ(r.code, 0) << r.output;
   for (const char* row : {"sharpness median", "noise sigma, grey 96-127", "ORB keypoints median",
                           "depth holes at depth edges", "image motion median"})
-    EXPECT_NE(r.output.find(row), std::string::npos) << row << "\n" << r.output;
-  EXPECT_NE(r.output.find("fr3_walking_xyz_frame"), std::string::npos) << r.output;
+    EXPECT_THAT(r.output, ::testing::HasSubstr(row)) << row << "\n" << r.output;
+  EXPECT_THAT(r.output, ::testing::HasSubstr("fr3_walking_xyz_frame")) << r.output;
   std::ifstream in(page);
   const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  EXPECT_NE(html.find("<svg"), std::string::npos);
+  EXPECT_THAT(html, ::testing::HasSubstr("<svg"));
   fs::remove(page);
 
   DepotResult missing = depot("eval realism " + data + " --reference /nonexistent/real -q");

@@ -12,6 +12,7 @@
 #include <string>
 #include <thread>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -127,7 +128,7 @@ TEST(CliSystem, Open3dOdometryRunsAsASystem) {
   const std::string out = temp_path("open3d") + ".txt";
   const DepotResult r = depot("slam run " + still + " --system open3d_odometry -q -o " + out);
   ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find("tracked 10 of 10 frames"), std::string::npos) << r.output;
+  EXPECT_THAT(r.output, ::testing::HasSubstr("tracked 10 of 10 frames")) << r.output;
   const std::string rmse = ate_rmse(still, out);
   ASSERT_NE(rmse, "");
   EXPECT_LT(std::stod(rmse), 0.03) << "Open3D odometry on a static scene, 10 frames";
@@ -176,7 +177,7 @@ TEST(CliSystem, AFailingSystemIsOneErrorLineAndNoOutput) {
     const DepotResult r =
         depot("slam run " + walking() + " --system " + f.system + " -q -o " + out);
     EXPECT_NE(r.code, 0);
-    EXPECT_NE(r.output.find(f.reason), std::string::npos) << r.output;
+    EXPECT_THAT(r.output, ::testing::HasSubstr(f.reason)) << r.output;
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
     EXPECT_FALSE(fs::exists(out));
     EXPECT_FALSE(fs::exists(fs::path(out).replace_extension(".states.txt")));
@@ -203,7 +204,7 @@ TEST(CliSystem, CtrlCStopsTheSystemAndEverythingItStarted) {
   // What matters is the outcome, not how fast (a sanitizer build is slow):
   // the interrupt's exit code, no output, and no process of the group left.
   EXPECT_EQ(code, 130) << printed;
-  EXPECT_NE(printed.find("interrupted"), std::string::npos) << printed;
+  EXPECT_THAT(printed, ::testing::HasSubstr("interrupted")) << printed;
   EXPECT_FALSE(fs::exists(out));
   std::string ps;
   run_command("ps -eo args | grep -c '^sleep 32.5$'", &ps);
@@ -224,8 +225,8 @@ TEST(CliSystem, ASweepRecordsAFailedSystemAndGoesOn) {
       continue;
     }
     EXPECT_FALSE(j["ok"].get<bool>());
-    EXPECT_NE(j["error"].get<std::string>().find("exited with code 2"), std::string::npos);
-    EXPECT_NE(j["log_tail"].get<std::string>().find("no map"), std::string::npos);
+    EXPECT_THAT(j["error"].get<std::string>(), ::testing::HasSubstr("exited with code 2"));
+    EXPECT_THAT(j["log_tail"].get<std::string>(), ::testing::HasSubstr("no map"));
     ++failed;
   }
   EXPECT_EQ(ok, 1);
@@ -269,7 +270,7 @@ TEST(CliSystem, NothingTheSystemStartedOutlivesTheRun) {
   const std::string out = temp_path("leaves") + ".txt";
   const DepotResult r = depot("slam run " + walking() + " --system " + system + " -q -o " + out);
   ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find("tracked 12 of 12 frames"), std::string::npos) << r.output;
+  EXPECT_THAT(r.output, ::testing::HasSubstr("tracked 12 of 12 frames")) << r.output;
   EXPECT_EQ(processes_running("sleep 778.125"), 0);
   EXPECT_EQ(processes_running("sleep 778.25"), 0) << "setsid escaped the system's process group";
   EXPECT_EQ(processes_running("sleep 778.375"), 0);
@@ -324,7 +325,7 @@ TEST(CliSystem, ProgressShowsTheSystemsLogUnlessQuiet) {
   const DepotResult quiet =
       depot("slam run " + walking() + " --system " + system + " -q -o " + temp_path("p") + ".txt");
   ASSERT_EQ(quiet.code, 0) << quiet.output;
-  EXPECT_EQ(quiet.output.find("frame 12 of 12"), std::string::npos) << quiet.output;
+  EXPECT_THAT(quiet.output, ::testing::Not(::testing::HasSubstr("frame 12 of 12"))) << quiet.output;
 }
 
 // Every absolute path a message names.

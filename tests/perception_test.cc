@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -68,15 +69,15 @@ TEST(Perception, PerfectSimulatedDetectorScoresOne) {
   EXPECT_EQ(read_json(json)["sides"][0]["false_positives"].get<int>(), 0);
   EXPECT_TRUE(fs::exists(report + "/report.html"));
   EXPECT_TRUE(fs::exists(report + "/recall_vs_height_1.svg"));
-  EXPECT_NE(r.output.find("person"), std::string::npos);
+  EXPECT_THAT(r.output, ::testing::HasSubstr("person"));
   // Recall per catalogue model: the mesh people are listed by the model
   // they wear (objects.json), each found every time.
   const size_t models = r.output.find("Recall per model");
   ASSERT_NE(models, std::string::npos) << r.output;
   const std::string table = r.output.substr(models, r.output.find("Recall by box") - models);
-  EXPECT_NE(table.find("person"), std::string::npos) << table;
-  EXPECT_NE(table.find("1.00"), std::string::npos) << table;
-  EXPECT_EQ(table.find("0.00"), std::string::npos) << table;
+  EXPECT_THAT(table, ::testing::HasSubstr("person")) << table;
+  EXPECT_THAT(table, ::testing::HasSubstr("1.00")) << table;
+  EXPECT_THAT(table, ::testing::Not(::testing::HasSubstr("0.00"))) << table;
 }
 
 TEST(Perception, YoloFastestFindsBothPeopleOfTheRealTumFrame) {
@@ -175,7 +176,7 @@ TEST(Perception, CalibrateFitsTheSimulatedDetectorToYoloFastest) {
   const std::string out = temp_path("calibrated") + ".yaml";
   const DepotResult r = depot("eval calibrate " + mesh_walking_dataset() + " -q -o " + out);
   ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find("person"), std::string::npos) << r.output;
+  EXPECT_THAT(r.output, ::testing::HasSubstr("person")) << r.output;
   // The file is a simulated detector config ...
   const slam::SimDetectorConfig c = slam::load_sim_detector_config_file(out);
   EXPECT_DOUBLE_EQ(c.min_confidence, 0.3) << "Yolo-Fastest's threshold";
@@ -201,8 +202,8 @@ TEST(Perception, CalibrateFitsTheSimulatedDetectorToYoloFastest) {
   EXPECT_EQ(d["actors_style"].as<std::string>(), "mesh");
   EXPECT_EQ(d["frames"].as<int>(), 30);
   EXPECT_EQ(d["size"].as<std::string>(), "320x240");
-  EXPECT_NE(d["render"].as<std::string>().find("--width 320"), std::string::npos);
-  EXPECT_EQ(d["render"].as<std::string>().find("_style"), std::string::npos)
+  EXPECT_THAT(d["render"].as<std::string>(), ::testing::HasSubstr("--width 320"));
+  EXPECT_THAT(d["render"].as<std::string>(), ::testing::Not(::testing::HasSubstr("_style")))
       << "mesh is the default style: no --set needed";
   const YAML::Node person = cal["classes"]["person"];
   EXPECT_GT(person["boxes"].as<int>(), 20);

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/error.h"
@@ -95,10 +96,10 @@ TEST(CameraClearance, RefusesBeforeRenderingWithOneLine) {
     EXPECT_NE(r.code, 0) << command << ": " << r.output;
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
     EXPECT_EQ(r.output.rfind("depot: error: " + yaml + ": ", 0), 0u) << r.output;
-    EXPECT_NE(r.output.find("closer than 0.40 m"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("frames "), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("'crates_e'"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("allow_close"), std::string::npos) << r.output;
+    EXPECT_THAT(r.output, ::testing::HasSubstr("closer than 0.40 m")) << r.output;
+    EXPECT_THAT(r.output, ::testing::HasSubstr("frames ")) << r.output;
+    EXPECT_THAT(r.output, ::testing::HasSubstr("'crates_e'")) << r.output;
+    EXPECT_THAT(r.output, ::testing::HasSubstr("allow_close")) << r.output;
     EXPECT_FALSE(fs::exists(out)) << command << " wrote output";
   }
   // The frames in the message are the ones measured.
@@ -106,7 +107,7 @@ TEST(CameraClearance, RefusesBeforeRenderingWithOneLine) {
   const std::string frames = std::to_string(m.clearance.too_close[0].first) + "-" +
                              std::to_string(m.clearance.too_close[0].last);
   const std::string message = error_of([&] { sim::export_truth(m.scenario, {}); });
-  EXPECT_NE(message.find(frames), std::string::npos) << message << " should name " << frames;
+  EXPECT_THAT(message, ::testing::HasSubstr(frames)) << message << " should name " << frames;
 }
 
 TEST(CameraClearance, OptOutRendersWithAWarningNamingTheFrames) {
@@ -114,9 +115,9 @@ TEST(CameraClearance, OptOutRendersWithAWarningNamingTheFrames) {
   const std::string out = temp_path("out");
   DepotResult r = depot("sim truth " + yaml + " -q -o " + out);
   EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find("depot: warning: " + yaml + ": "), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("frames "), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("'crates_e'"), std::string::npos) << r.output;
+  EXPECT_THAT(r.output, ::testing::HasSubstr("depot: warning: " + yaml + ": ")) << r.output;
+  EXPECT_THAT(r.output, ::testing::HasSubstr("frames ")) << r.output;
+  EXPECT_THAT(r.output, ::testing::HasSubstr("'crates_e'")) << r.output;
   EXPECT_TRUE(fs::exists(out + "/groundtruth.txt"));
 }
 

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iterator>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
@@ -80,7 +81,7 @@ TEST(SimLight, AutoExposureRecoversFromALightDropWithItsLag) {
   EXPECT_GT(exposures[44].gain, 1.0);
   EXPECT_NEAR(mean_grey(d, 44), target, metering);
   const std::string calibration = file_text(root + "/calibration.yaml");
-  EXPECT_NE(calibration.find("  auto_exposure: true\n"), std::string::npos) << calibration;
+  EXPECT_THAT(calibration, ::testing::HasSubstr("  auto_exposure: true\n")) << calibration;
 }
 
 // Shadows (`shadows: true`): MuJoCo's shadow maps for the depot's lights, so
@@ -307,8 +308,8 @@ TEST(SimLight, ShippedSensorProfilesRenderAndStateTheirCamera) {
     const std::string root = render_small(r);
     EXPECT_EQ(dataset::read_exposures(root).size(), 3u) << profile;
     const std::string calibration = file_text(root + "/calibration.yaml");
-    EXPECT_NE(calibration.find("  bayer: grbg"), std::string::npos) << profile;
-    EXPECT_NE(calibration.find("  readout: 0.0"), std::string::npos) << profile;
+    EXPECT_THAT(calibration, ::testing::HasSubstr("  bayer: grbg")) << profile;
+    EXPECT_THAT(calibration, ::testing::HasSubstr("  readout: 0.0")) << profile;
   }
 }
 

@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/testing/error_of.h"
@@ -92,8 +93,8 @@ TEST(WorldSeed, SeedWorldFixesTheWorld) {
       << "seed_world: the world is the same for all seeds";
   EXPECT_EQ(one.objects, two.objects);
   EXPECT_NE(one.groundtruth, two.groundtruth) << "the seed still moves the hand-held camera";
-  EXPECT_NE(two.info.find("\"seed\": 2"), std::string::npos) << two.info;
-  EXPECT_NE(two.info.find("\"world_seed\": 5"), std::string::npos) << two.info;
+  EXPECT_THAT(two.info, ::testing::HasSubstr("\"seed\": 2")) << two.info;
+  EXPECT_THAT(two.info, ::testing::HasSubstr("\"world_seed\": 5")) << two.info;
   // seed_world: N is the world that seed N draws.
   EXPECT_EQ(one.object_poses, truth("depot_walking_xyz", 5).object_poses);
 }
@@ -122,7 +123,8 @@ int check_lanes(const std::string& path, int seeds,
   int shifted = 0;
   for (uint64_t seed = 1; seed <= static_cast<uint64_t>(seeds); ++seed) {
     const sim::StaticObstacles obstacles(layout, seed);
-    const std::vector<sim::ActorSpec> varied = sim::vary_actors(scenario.actors, seed, obstacles.column_clearance());
+    const std::vector<sim::ActorSpec> varied =
+        sim::vary_actors(scenario.actors, seed, obstacles.column_clearance());
     for (size_t i = 0; i < varied.size(); ++i) {
       const sim::ActorSpec& a = varied[i];
       if (!sim::has_lane(a)) {
@@ -133,7 +135,8 @@ int check_lanes(const std::string& path, int seeds,
       shifted += a.lane.bound() > 0.01;
       const double half_width = sim::lane_half_width(a);
       double widest = 0.0, written_clearance = 1e9, varied_clearance = 1e9;
-      for (const sim::LaneSample& s : sim::lane_samples(scenario.actors[i], a, obstacles.column_clearance())) {
+      for (const sim::LaneSample& s :
+           sim::lane_samples(scenario.actors[i], a, obstacles.column_clearance())) {
         written_clearance = std::min(written_clearance, s.written_clearance);
         varied_clearance = std::min(varied_clearance, s.varied_clearance);
         const double shift = (s.varied - s.written).norm();
@@ -230,7 +233,7 @@ TEST(WorldSeed, PushersStartClearOfTheirTarget) {
       message.rfind(close + ": actor 'pusher_1' starts with its hands inside 'chair_pushed'", 0),
       0u)
       << message;
-  EXPECT_NE(message.find("at least 0.20 m further"), std::string::npos) << message;
+  EXPECT_THAT(message, ::testing::HasSubstr("at least 0.20 m further")) << message;
   const std::string clear = temp_path("pusher_clear") + ".yaml";
   std::ofstream(clear) << pusher_starting_at(-2.65);
   EXPECT_EQ(error_of([&] { sim::export_truth(sim::load_scenario(clear), request); }), "");

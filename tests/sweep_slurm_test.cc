@@ -11,6 +11,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -24,9 +25,9 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/support/render_helpers.h"
+#include "tools/harness/plan/sweep_job_state.h"
 #include "tools/harness/schedule/command_output.h"
 #include "tools/harness/schedule/slurm_submission.h"
-#include "tools/harness/plan/sweep_job_state.h"
 
 namespace fs = std::filesystem;
 
@@ -129,8 +130,8 @@ TEST(SweepSlurm, SameRecordsAsTheLocalPool) {
   const double slurm_s = seconds_since(t0);
   ASSERT_EQ(b.code, 0) << b.output;
   std::printf("wall time: local pool (-j 2) %.1f s, Slurm %.1f s\n", local_s, slurm_s);
-  EXPECT_NE(b.output.find("submitted to Slurm"), std::string::npos) << b.output;
-  EXPECT_NE(b.output.find("report: "), std::string::npos) << b.output;
+  EXPECT_THAT(b.output, ::testing::HasSubstr("submitted to Slurm")) << b.output;
+  EXPECT_THAT(b.output, ::testing::HasSubstr("report: ")) << b.output;
 
   const auto local_records = run_records(local), slurm_records = run_records(slurm);
   ASSERT_EQ(local_records.size(), 8u) << a.output;
@@ -151,7 +152,7 @@ TEST(SweepSlurm, SameRecordsAsTheLocalPool) {
     EXPECT_EQ(sx.str(), sy.str()) << table;
   }
   const test::DepotResult status = test::depot("sweep status " + slurm.string());
-  EXPECT_NE(status.output.find("12 jobs: 12 done"), std::string::npos) << status.output;
+  EXPECT_THAT(status.output, ::testing::HasSubstr("12 jobs: 12 done")) << status.output;
 }
 
 // Starts `depot args...` in the background, its output in `log`.
@@ -201,7 +202,7 @@ TEST(SweepSlurm, CancelledTaskThenResumeWritesNoRecordTwice) {
   const std::string first = read(kRoot / "cancel.log");
   ASSERT_TRUE(WIFEXITED(status)) << first;
   EXPECT_NE(WEXITSTATUS(status), 0) << "a cancelled task leaves the sweep unfinished\n" << first;
-  EXPECT_NE(first.find("FAILED"), std::string::npos) << first;
+  EXPECT_THAT(first, ::testing::HasSubstr("FAILED")) << first;
 
   std::map<fs::path, fs::file_time_type> stamps;
   for (const auto& r : run_records(sweep)) stamps[r] = fs::last_write_time(r);
@@ -213,9 +214,10 @@ TEST(SweepSlurm, CancelledTaskThenResumeWritesNoRecordTwice) {
   EXPECT_EQ(run_records(sweep).size(), 8u) << resumed.output;
   for (const auto& [path, stamp] : stamps)
     EXPECT_EQ(fs::last_write_time(path), stamp) << path << " was written twice";
-  EXPECT_EQ(resumed.output.find(" 0 already finished"), std::string::npos) << resumed.output;
+  EXPECT_THAT(resumed.output, ::testing::Not(::testing::HasSubstr(" 0 already finished")))
+      << resumed.output;
   for (const auto& e : fs::recursive_directory_iterator(sweep))
-    EXPECT_EQ(e.path().string().find(".partial-"), std::string::npos) << e.path();
+    EXPECT_THAT(e.path().string(), ::testing::Not(::testing::HasSubstr(".partial-"))) << e.path();
 }
 
 // The local cluster's state folder (tools/slurm/ci-cluster-test.sh exports
@@ -274,19 +276,19 @@ TEST(SweepSlurm, FailingJobIsRetriedThenReported) {
   const test::DepotResult r =
       test::depot("sweep run " + grid + " --scheduler slurm --retries 1 --poll 0.5");
   EXPECT_NE(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find(bad + ": FAILED"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("1 job(s) failed"), std::string::npos) << r.output;
+  EXPECT_THAT(r.output, ::testing::HasSubstr(bad + ": FAILED")) << r.output;
+  EXPECT_THAT(r.output, ::testing::HasSubstr("1 job(s) failed")) << r.output;
   const std::string log = read(sweep / "logs" / (bad + ".log"));
-  EXPECT_NE(log.find("attempt 1 of 2 exited"), std::string::npos) << log;
-  EXPECT_NE(log.find("attempt 2 of 2 exited"), std::string::npos) << log;
+  EXPECT_THAT(log, ::testing::HasSubstr("attempt 1 of 2 exited")) << log;
+  EXPECT_THAT(log, ::testing::HasSubstr("attempt 2 of 2 exited")) << log;
   const harness::SweepLayout layout{sweep.string()};
   ASSERT_TRUE(fs::exists(harness::failure_record_path(layout, bad)));
   const std::string failure = read(harness::failure_record_path(layout, bad));
-  EXPECT_NE(failure.find("attempt 2 of 2"), std::string::npos) << failure;
+  EXPECT_THAT(failure, ::testing::HasSubstr("attempt 2 of 2")) << failure;
   EXPECT_TRUE(fs::exists(sweep / "runs" / "depot_walking_xyz__s1__orb" / "result.json"));
   const test::DepotResult status = test::depot("sweep status " + sweep.string());
-  EXPECT_NE(status.output.find("1 failed"), std::string::npos) << status.output;
-  EXPECT_NE(status.output.find("failed: " + bad), std::string::npos) << status.output;
+  EXPECT_THAT(status.output, ::testing::HasSubstr("1 failed")) << status.output;
+  EXPECT_THAT(status.output, ::testing::HasSubstr("failed: " + bad)) << status.output;
 }
 
 TEST(SweepSlurm, BadInputIsOneErrorLineAndSubmitsNothing) {
@@ -305,7 +307,7 @@ TEST(SweepSlurm, BadInputIsOneErrorLineAndSubmitsNothing) {
     EXPECT_NE(r.code, 0);
     EXPECT_EQ(lines(r.output), 1u) << r.output;
     EXPECT_EQ(error_lines(r.output), 1u) << r.output;
-    EXPECT_NE(r.output.find("sbatch not found on PATH"), std::string::npos) << r.output;
+    EXPECT_THAT(r.output, ::testing::HasSubstr("sbatch not found on PATH")) << r.output;
     EXPECT_FALSE(harness::read_submission(layout));
   }
   if (!cluster_reachable()) {
@@ -321,7 +323,7 @@ TEST(SweepSlurm, BadInputIsOneErrorLineAndSubmitsNothing) {
     EXPECT_NE(r.code, 0) << args;
     EXPECT_EQ(lines(r.output), 1u) << args << "\n" << r.output;
     EXPECT_EQ(error_lines(r.output), 1u) << args << "\n" << r.output;
-    EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
+    EXPECT_THAT(r.output, ::testing::HasSubstr(message)) << args << "\n" << r.output;
     EXPECT_EQ(queued(name), 0u) << args;
     EXPECT_FALSE(harness::read_submission(layout)) << args;
   }
@@ -383,7 +385,7 @@ TEST(SweepSlurm, NoResumeRunsWhileTheFoldersTasksAreQueued) {
     EXPECT_NE(r.output.find(sweep.string() + ": 2 task(s) of its Slurm submission"),
               std::string::npos)
         << r.output;
-    EXPECT_NE(r.output.find("`depot sweep status " + sweep.string() + "`"), std::string::npos)
+    EXPECT_THAT(r.output, ::testing::HasSubstr("`depot sweep status " + sweep.string() + "`"))
         << r.output;
     EXPECT_NE(r.output.find("`scancel " + cancel.ids[0] + " " + cancel.ids[1] + "`"),
               std::string::npos)

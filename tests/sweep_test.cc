@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -22,8 +23,8 @@
 #include "tests/support/dataset_reader.h"
 #include "tests/support/render_helpers.h"
 #include "tools/harness/plan/run_record.h"
-#include "tools/harness/schedule/slurm_submission.h"
 #include "tools/harness/plan/sweep_job_state.h"
+#include "tools/harness/schedule/slurm_submission.h"
 
 namespace fs = std::filesystem;
 
@@ -107,7 +108,7 @@ TEST(Sweep, ResumesAfterBeingKilledAndReports) {
   const std::string first = read(kRoot / "load.log");
   ASSERT_TRUE(WIFEXITED(status)) << first;
   ASSERT_NE(WEXITSTATUS(status), 0) << first;
-  EXPECT_NE(first.find("resume with `depot sweep resume"), std::string::npos) << first;
+  EXPECT_THAT(first, ::testing::HasSubstr("resume with `depot sweep resume")) << first;
   const std::vector<fs::path> before = records(sweep);
   ASSERT_FALSE(before.empty());
   ASSERT_LT(before.size(), 4u) << "the sweep finished before it could be killed";
@@ -122,7 +123,7 @@ TEST(Sweep, ResumesAfterBeingKilledAndReports) {
   for (const auto& [path, stamp] : stamps)
     EXPECT_EQ(fs::last_write_time(path), stamp) << path << " was run again";
   for (const auto& e : fs::recursive_directory_iterator(sweep))
-    EXPECT_EQ(e.path().string().find(".partial-"), std::string::npos) << e.path();
+    EXPECT_THAT(e.path().string(), ::testing::Not(::testing::HasSubstr(".partial-"))) << e.path();
   EXPECT_FALSE(fs::exists(sweep / "data" / "depot_walking_xyz__load-0__s1"))
       << "consumed datasets are removed";
 
@@ -144,14 +145,14 @@ TEST(Sweep, ResumesAfterBeingKilledAndReports) {
   EXPECT_TRUE(std::isnan(by_id.at("depot_walking_xyz__load-1.5__s1__orb").recall_with_depth));
 
   const std::string tables = read(sweep / "report" / "tables.md");
-  EXPECT_NE(tables.find("| depot_walking_xyz | 1.5 |"), std::string::npos) << tables;
-  EXPECT_NE(tables.find("recall with depth"), std::string::npos) << tables;
-  EXPECT_NE(resumed.output.find("report: "), std::string::npos);
+  EXPECT_THAT(tables, ::testing::HasSubstr("| depot_walking_xyz | 1.5 |")) << tables;
+  EXPECT_THAT(tables, ::testing::HasSubstr("recall with depth")) << tables;
+  EXPECT_THAT(resumed.output, ::testing::HasSubstr("report: "));
 
   // A second resume has nothing to do.
   const test::DepotResult again = test::depot("sweep resume " + sweep.string());
   EXPECT_EQ(again.code, 0);
-  EXPECT_NE(again.output.find("0 to run"), std::string::npos) << again.output;
+  EXPECT_THAT(again.output, ::testing::HasSubstr("0 to run")) << again.output;
   for (const auto& p : after) EXPECT_TRUE(fs::exists(p));
 
   // A dataset left behind by a runner stopped between its last run and the
@@ -172,15 +173,15 @@ TEST(Sweep, RefusesBadGridsBeforeRunningAnything) {
   const test::DepotResult unknown =
       test::depot("sweep run depot_walking_xyz -o " + sweep.string() + " --vary speed=1,2");
   EXPECT_NE(unknown.code, 0);
-  EXPECT_NE(unknown.output.find("unknown parameter 'speed'"), std::string::npos) << unknown.output;
+  EXPECT_THAT(unknown.output, ::testing::HasSubstr("unknown parameter 'speed'")) << unknown.output;
   const test::DepotResult range =
       test::depot("sweep run depot_walking_xyz -o " + sweep.string() + " --vary load=0,9");
   EXPECT_NE(range.code, 0);
-  EXPECT_NE(range.output.find("dynamic"), std::string::npos) << range.output;
+  EXPECT_THAT(range.output, ::testing::HasSubstr("dynamic")) << range.output;
   EXPECT_FALSE(fs::exists(sweep / "sweep.json"));
   const test::DepotResult missing = test::depot("sweep resume " + (kRoot / "nowhere").string());
   EXPECT_NE(missing.code, 0);
-  EXPECT_NE(missing.output.find("sweep.json: cannot open"), std::string::npos) << missing.output;
+  EXPECT_THAT(missing.output, ::testing::HasSubstr("sweep.json: cannot open")) << missing.output;
 }
 
 TEST(Sweep, ReportRendersInHeadlessChromium) {
@@ -258,13 +259,13 @@ TEST(Sweep, ASystemFileGivenRelativeIsFoundFromAnyFolder) {
   const std::string out = (work / "out").string();
   const test::DepotResult status = test::depot("sweep status " + out);
   ASSERT_EQ(status.code, 0) << status.output;
-  EXPECT_NE(status.output.find("3 jobs: 0 done"), std::string::npos) << status.output;
+  EXPECT_THAT(status.output, ::testing::HasSubstr("3 jobs: 0 done")) << status.output;
   const test::DepotResult resumed = test::depot("sweep resume " + out + " -q");
   ASSERT_EQ(resumed.code, 0) << resumed.output;
   const harness::RunRecord r = harness::read_run_record(
       (work / "out" / "runs" / "depot_static__s1__system_s_broken.yaml" / "result.json").string());
   EXPECT_FALSE(r.ok);
-  EXPECT_NE(r.error.find("exited with code 2"), std::string::npos) << r.error;  // it ran
+  EXPECT_THAT(r.error, ::testing::HasSubstr("exited with code 2")) << r.error;  // it ran
 }
 
 // Issue 30, item 6: one state per job (harness/plan/sweep_job_state.h) for
@@ -313,10 +314,10 @@ TEST(Sweep, StatusResumeAndReportAgreeOnEachJobsState) {
         << running.output;
     EXPECT_NE(running.output.find(", 1 failed, 0 not started"), std::string::npos)
         << running.output;
-    EXPECT_NE(running.output.find("failed: " + orb), std::string::npos) << running.output;
+    EXPECT_THAT(running.output, ::testing::HasSubstr("failed: " + orb)) << running.output;
   }
   const std::string first = read(work / "run.log");
-  EXPECT_NE(first.find("1 job(s) failed"), std::string::npos) << first;
+  EXPECT_THAT(first, ::testing::HasSubstr("1 job(s) failed")) << first;
 
   // Status and report: one without a trajectory, one failed.
   test::DepotResult status = test::depot("sweep status " + sweep.string());
@@ -353,8 +354,8 @@ TEST(Sweep, StatusResumeAndReportAgreeOnEachJobsState) {
   EXPECT_NE(report.output.find("depot: warning: " + record.string() + ": corrupt record"),
             std::string::npos)
       << report.output;
-  EXPECT_NE(report.output.find("(1 of 2 runs)"), std::string::npos) << report.output;
-  EXPECT_NE(report.output.find("1 of 2 (1 without a trajectory, 1 corrupt)"), std::string::npos)
+  EXPECT_THAT(report.output, ::testing::HasSubstr("(1 of 2 runs)")) << report.output;
+  EXPECT_THAT(report.output, ::testing::HasSubstr("1 of 2 (1 without a trajectory, 1 corrupt)"))
       << report.output;
   resumed = test::depot("sweep resume " + sweep.string() + " -q");
   ASSERT_EQ(resumed.code, 0) << resumed.output;
@@ -365,7 +366,7 @@ TEST(Sweep, StatusResumeAndReportAgreeOnEachJobsState) {
             std::string::npos)
       << resumed.output;
   EXPECT_TRUE(harness::read_run_record(record.string()).ok);
-  EXPECT_NE(resumed.output.find("(2 of 2 runs)"), std::string::npos) << resumed.output;
+  EXPECT_THAT(resumed.output, ::testing::HasSubstr("(2 of 2 runs)")) << resumed.output;
 }
 
 // Issue 30, item 3: a folder submitted to Slurm is not run locally while
@@ -423,8 +424,8 @@ TEST(Sweep, ResumeRefusesWhileItsSlurmTasksMayStillRun) {
   EXPECT_NE(r.output.find("was submitted to Slurm but its queue cannot be read (squeue: "),
             std::string::npos)
       << r.output;
-  EXPECT_NE(r.output.find("Unable to contact slurm controller"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("--assume-queue-empty"), std::string::npos) << r.output;
+  EXPECT_THAT(r.output, ::testing::HasSubstr("Unable to contact slurm controller")) << r.output;
+  EXPECT_THAT(r.output, ::testing::HasSubstr("--assume-queue-empty")) << r.output;
   nothing_ran();
   // No squeue here at all: refused, saying why.
   r = resume_with_path((work / "nowhere").string());

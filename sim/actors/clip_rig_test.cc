@@ -3,6 +3,7 @@
 // procedurally, carrying its IK feet with the legs.
 #include "sim/actors/clip_rig.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/config_path.h"
@@ -86,8 +87,8 @@ TEST(ClipRig, AnimalWithoutWalkOrLegsFailsNamingTheAsset) {
     ClipRig rig(model, entry, ClipRig::Gait::kWalk);
     FAIL() << "expected an error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("asset 'sheep'"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("walk"), std::string::npos) << e.what();
+    EXPECT_THAT(std::string(e.what()), ::testing::HasSubstr("asset 'sheep'")) << e.what();
+    EXPECT_THAT(std::string(e.what()), ::testing::HasSubstr("walk")) << e.what();
   }
 }
 

@@ -3,6 +3,7 @@
 // catalogue and the entry.
 #include "sim/assets/asset_catalog.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/config_path.h"
@@ -29,7 +30,7 @@ TEST(AssetCatalog, ShippedCatalogueNamesRealFilesAndClasses) {
     EXPECT_FALSE(catalog_assets_of_class(c, cls).empty()) << cls;
   const CatalogAsset& dog = catalog_asset(c, "dog");
   EXPECT_EQ(dog.label_class, "dog");
-  EXPECT_NE(dog.clip_file.find("fox-animations.glb"), std::string::npos);
+  EXPECT_THAT(dog.clip_file, ::testing::HasSubstr("fox-animations.glb"));
   EXPECT_DOUBLE_EQ(dog.options.target_height, 0.6);
   EXPECT_EQ(catalog_asset(c, "worker_male").clips.at("walk"), "Walk_procedural");
   EXPECT_EQ(catalog_asset(c, "worker_male").file.rfind(shared_data_dir(), 0), 0u);

@@ -2,6 +2,7 @@
 // errors for intervals that are malformed, out of range or overlapping.
 #include "sim/scenario/camera_cover.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/error.h"
@@ -67,11 +68,11 @@ TEST(CameraCover, BadIntervalsAreOneErrorNamingFileAndKey) {
   for (const char* value : {"5", "[3]", "[[1, 2, 3]]", "[[a, b]]", "[[-1, 2]]", "[[2, 1]]",
                             "[[35, 40]]", "[[40, 41]]", "[[1, 3], [2, 4]]", "[[.nan, 2]]"}) {
     const std::string error = load_error(value);
-    EXPECT_NE(error.find("depot_patrol.yaml"), std::string::npos) << value << ": " << error;
-    EXPECT_NE(error.find("'camera_cover'"), std::string::npos) << value << ": " << error;
+    EXPECT_THAT(error, ::testing::HasSubstr("depot_patrol.yaml")) << value << ": " << error;
+    EXPECT_THAT(error, ::testing::HasSubstr("'camera_cover'")) << value << ": " << error;
     EXPECT_EQ(error.find('\n'), std::string::npos) << value << ": " << error;
   }
-  EXPECT_NE(load_error("[[35, 40]]").find("the sequence lasts 36 s"), std::string::npos);
+  EXPECT_THAT(load_error("[[35, 40]]"), ::testing::HasSubstr("the sequence lasts 36 s"));
   // The scenario's own length bounds the cover: fewer frames, shorter cover.
   EXPECT_NE(error_of([] {
               load_scenario(kPatrol, {{"frames", "30"}, {"camera_cover", "[[0.5, 2]]"}});

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <string>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/testing/error_of.h"
@@ -43,7 +44,7 @@ TEST(ScenarioBadInput, AValueQuotedWithItsLineBreaksIsStillOneLine) {
       write_scenario("multiline.yaml", "name: x\nmotion: {type: w\n\n\n\ne}\n");
   const std::string error = error_of([&] { load_scenario(path); });
   EXPECT_EQ(error.find('\n'), std::string::npos) << error;
-  EXPECT_NE(error.find("unknown camera motion 'w\\n"), std::string::npos) << error;
+  EXPECT_THAT(error, ::testing::HasSubstr("unknown camera motion 'w\\n")) << error;
   std::filesystem::remove(path);
 }
 

@@ -1,6 +1,7 @@
 // The scenario loader's command-line overrides (the sweep's parameters).
 #include "sim/scenario/scenario_loader.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/error.h"
@@ -51,11 +52,11 @@ TEST(ScenarioActorsStyle, DefaultsToMeshAndTakesPrimitive) {
                        "'clay' (expected primitive or mesh)"),
             std::string::npos)
       << error;
-  EXPECT_EQ(error.find(".yaml:1"), std::string::npos) << error;
+  EXPECT_THAT(error, ::testing::Not(::testing::HasSubstr(".yaml:1"))) << error;
   const std::string nested = error_of([] {
     load_scenario(kWalking, {{"sensor.rgb_noise", "loud"}});
   });
-  EXPECT_NE(nested.find("--set sensor.rgb_noise=loud"), std::string::npos) << nested;
+  EXPECT_THAT(nested, ::testing::HasSubstr("--set sensor.rgb_noise=loud")) << nested;
 }
 
 TEST(ScenarioPropsStyle, DefaultsToMeshAndTakesPrimitive) {
@@ -65,7 +66,7 @@ TEST(ScenarioPropsStyle, DefaultsToMeshAndTakesPrimitive) {
   EXPECT_EQ(primitive.actors_style, "mesh") << "props_style leaves the actors alone";
   EXPECT_EQ(load_scenario(kWalking, {{"actors_style", "primitive"}}).props_style, "mesh");
   const std::string error = error_of([] { load_scenario(kWalking, {{"props_style", "wood"}}); });
-  EXPECT_NE(error.find("depot_walking_xyz.yaml"), std::string::npos) << error;
+  EXPECT_THAT(error, ::testing::HasSubstr("depot_walking_xyz.yaml")) << error;
   EXPECT_NE(error.find("unknown props_style 'wood' (expected primitive or mesh)"),
             std::string::npos)
       << error;
@@ -84,7 +85,7 @@ TEST(ScenarioStyle, SetsActorsAndPropsWhichMayOverrideIt) {
   EXPECT_EQ(props_only.actors_style, "primitive");
   EXPECT_EQ(props_only.props_style, "mesh");
   const std::string error = error_of([] { load_scenario(kWalking, {{"style", "clay"}}); });
-  EXPECT_NE(error.find("unknown style 'clay' (expected primitive or mesh)"), std::string::npos)
+  EXPECT_THAT(error, ::testing::HasSubstr("unknown style 'clay' (expected primitive or mesh)"))
       << error;
 }
 
@@ -122,9 +123,9 @@ TEST(ScenarioLamps, ReadsLampsAndRefusesBadOnes) {
            {"[{near: [0, 3], events: [], colour: red}]", "unknown key 'colour'"},
            {"{near: [0, 3]}", "'lamps' must be a list of {near, events}"}}) {
     const std::string error = error_of([&] { load_scenario(kWalking, {{"lamps", value}}); });
-    EXPECT_NE(error.find(needle), std::string::npos) << value << ": " << error;
+    EXPECT_THAT(error, ::testing::HasSubstr(needle)) << value << ": " << error;
     // Nodes inside the --set value name the option, not a line of the file.
-    EXPECT_NE(error.find("depot_walking_xyz.yaml: --set lamps="), std::string::npos) << error;
+    EXPECT_THAT(error, ::testing::HasSubstr("depot_walking_xyz.yaml: --set lamps=")) << error;
   }
 }
 
@@ -138,8 +139,8 @@ TEST(ScenarioSensorProfile, AConflictWithTheProfileIsOneClearError) {
   EXPECT_NE(error.find("sensor exposure = 0.015000 s is longer than max_exposure = 0.008000 s"),
             std::string::npos)
       << error;
-  EXPECT_EQ(error.find("invalid node"), std::string::npos) << error;
-  EXPECT_EQ(error.find(".yaml:0"), std::string::npos) << "no line 0: " << error;
+  EXPECT_THAT(error, ::testing::Not(::testing::HasSubstr("invalid node"))) << error;
+  EXPECT_THAT(error, ::testing::Not(::testing::HasSubstr(".yaml:0"))) << "no line 0: " << error;
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // mass, inertia and contacts.
 #include "sim/scene/mesh_props.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/config_path.h"
@@ -77,7 +78,7 @@ TEST(MeshProps, DesksFitThePrimitiveTopAndShareTheirMeshes) {
     EXPECT_NEAR(g.bounds.min().z(), 0.0, 1e-6) << model;
     EXPECT_NEAR(g.bounds.max().z(), kDeskTopHeight, 1e-6) << model;
     // Turned half round: its front (the desk's drawers) faces -x.
-    EXPECT_NE(g.xml.find("quat=\"0 0 0 1\""), std::string::npos) << model;
+    EXPECT_THAT(g.xml, ::testing::HasSubstr("quat=\"0 0 0 1\"")) << model;
   }
   EXPECT_EQ(p.props.models_loaded(), 2u);
   // Another desk of the same size shares its meshes; another length adds
@@ -107,7 +108,7 @@ TEST(MeshProps, DeskModelMustBeACatalogueDesk) {
       << error;
   desk.model = "sofa";
   error = error_of([&] { p.props.desk(desk, "depot.yaml: object 'd'"); });
-  EXPECT_NE(error.find("model 'sofa' is not in the asset catalogue"), std::string::npos) << error;
+  EXPECT_THAT(error, ::testing::HasSubstr("model 'sofa' is not in the asset catalogue")) << error;
 }
 
 TEST(MeshProps, SceneLoadsEachModelOnceAndKeepsThePhysics) {

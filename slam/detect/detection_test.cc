@@ -1,4 +1,5 @@
 // Eq. 8 box conversion, IoU, class-wise NMS and class-name files.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/error.h"
@@ -104,7 +105,7 @@ TEST(ClassNames, ErrorsNameTheFile) {
     dataset::load_class_names(missing);
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find(missing), std::string::npos) << e.what();
+    EXPECT_THAT(std::string(e.what()), ::testing::HasSubstr(missing)) << e.what();
   }
   const std::string empty = dir.write("empty.names", "\n  \n");
   EXPECT_THROW(
@@ -112,7 +113,7 @@ TEST(ClassNames, ErrorsNameTheFile) {
         try {
           dataset::load_class_names(empty);
         } catch (const Error& e) {
-          EXPECT_NE(std::string(e.what()).find(empty), std::string::npos) << e.what();
+          EXPECT_THAT(std::string(e.what()), ::testing::HasSubstr(empty)) << e.what();
           throw;
         }
       },
@@ -130,8 +131,8 @@ TEST(ClassNames, WantedClasses) {
     wanted_classes(names, {"pig"}, "my.names");
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("my.names"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("'pig'"), std::string::npos) << e.what();
+    EXPECT_THAT(std::string(e.what()), ::testing::HasSubstr("my.names")) << e.what();
+    EXPECT_THAT(std::string(e.what()), ::testing::HasSubstr("'pig'")) << e.what();
   }
 }
 

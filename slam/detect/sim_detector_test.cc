@@ -16,6 +16,7 @@
 
 #include <unistd.h>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/error.h"
@@ -564,7 +565,7 @@ TEST_F(SimDetectorTest, MissingOrMalformedFilesAreClearErrors) {
             std::string::npos);
   reset();
   fs::remove(dir + "/rgb.txt");
-  EXPECT_NE(error_of([&] { SimDetector{dir}; }).find(dir + "/rgb.txt"), std::string::npos);
+  EXPECT_THAT(error_of([&] { SimDetector{dir}; }), ::testing::HasSubstr(dir + "/rgb.txt"));
   EXPECT_EQ(error_of([&] { SimDetector{*root_ + "/nowhere"}; }),
             *root_ + "/nowhere: not a dataset folder");
   SimDetectorConfig bad;

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/error.h"
@@ -39,7 +40,7 @@ TEST(FrameStatesFile, RoundTripsEveryState) {
                                                  {1.5, FrameState::kRelocalized}};
   const std::string text = format_frame_states(states, "test run");
   EXPECT_EQ(text.rfind("# test run\n# timestamp state", 0), 0u) << text;
-  EXPECT_NE(text.find("\n1.300000 NEW_MAP\n"), std::string::npos) << text;
+  EXPECT_THAT(text, ::testing::HasSubstr("\n1.300000 NEW_MAP\n")) << text;
   const std::vector<StampedFrameState> back = read_frame_states(temp_file("all.txt", text));
   ASSERT_EQ(back.size(), states.size());
   for (size_t i = 0; i < states.size(); ++i) {
@@ -62,7 +63,7 @@ TEST(FrameStatesFile, FramesWithAPoseNameTheirMap) {
       {1.2, FrameState::kLost, -1},    {1.3, FrameState::kNewMap, 0},
       {1.4, FrameState::kOk, 0},       {1.5, FrameState::kOtherMap, 2}};
   const std::string text = format_frame_states(states);
-  EXPECT_NE(text.find("\n1.200000 LOST\n1.300000 NEW_MAP 0\n"), std::string::npos) << text;
+  EXPECT_THAT(text, ::testing::HasSubstr("\n1.200000 LOST\n1.300000 NEW_MAP 0\n")) << text;
   const std::vector<StampedFrameState> back = read_frame_states(temp_file("maps.txt", text));
   ASSERT_EQ(back.size(), states.size());
   for (size_t i = 0; i < states.size(); ++i) EXPECT_EQ(back[i].map, states[i].map) << i;
@@ -87,19 +88,19 @@ TEST(FrameStatesFile, BadLinesNameFileAndLine) {
             std::string::npos);
   EXPECT_NE(error_of("1.0 OK 0 extra\n").find("bad.txt:1: expected 2 or 3 fields"),
             std::string::npos);
-  EXPECT_NE(error_of("1.0\n").find("bad.txt:1: expected 2 or 3 fields"), std::string::npos);
+  EXPECT_THAT(error_of("1.0\n"), ::testing::HasSubstr("bad.txt:1: expected 2 or 3 fields"));
   EXPECT_NE(error_of("1.0 LOST 0\n").find("bad.txt:1: a LOST frame has no pose, so no map"),
             std::string::npos);
-  EXPECT_NE(error_of("1.0 OK x\n").find("bad.txt:1: 'x' is not a map number"), std::string::npos);
-  EXPECT_NE(error_of("1.0 OK -1\n").find("bad.txt:1: '-1' is not a map number"), std::string::npos);
+  EXPECT_THAT(error_of("1.0 OK x\n"), ::testing::HasSubstr("bad.txt:1: 'x' is not a map number"));
+  EXPECT_THAT(error_of("1.0 OK -1\n"), ::testing::HasSubstr("bad.txt:1: '-1' is not a map number"));
   EXPECT_NE(error_of("1.0 OK 2\n").find("bad.txt:1: a tracked frame is in map 0"),
             std::string::npos);
   EXPECT_NE(error_of("1.0 OTHER_MAP 0\n").find("bad.txt:1: an OTHER_MAP frame is not in map 0"),
             std::string::npos);
-  EXPECT_NE(error_of("x OK\n").find("bad.txt:1: 'x' is not a timestamp"), std::string::npos);
+  EXPECT_THAT(error_of("x OK\n"), ::testing::HasSubstr("bad.txt:1: 'x' is not a timestamp"));
   EXPECT_NE(error_of("2.0 OK\n1.0 OK\n").find("bad.txt:2: timestamps must increase"),
             std::string::npos);
-  EXPECT_NE(error_of("# only a comment\n").find("no frames"), std::string::npos);
+  EXPECT_THAT(error_of("# only a comment\n"), ::testing::HasSubstr("no frames"));
 }
 
 }  // namespace

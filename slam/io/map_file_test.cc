@@ -13,6 +13,7 @@
 
 #include <unistd.h>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/binary_io.h"
@@ -168,8 +169,8 @@ TEST_F(MapFileTest, WhatIsLoadedIsWhatWasSaved) {
 TEST_F(MapFileTest, BadFilesAreOneClearError) {
   const std::string good = bytes();
   auto expect = [&](const std::string& error, const std::string& needle) {
-    EXPECT_NE(error.find(path_), std::string::npos) << error;
-    EXPECT_NE(error.find(needle), std::string::npos) << error;
+    EXPECT_THAT(error, ::testing::HasSubstr(path_)) << error;
+    EXPECT_THAT(error, ::testing::HasSubstr(needle)) << error;
   };
   write(good.substr(0, good.size() / 2));
   expect(load_error(), "checksum");
@@ -239,7 +240,7 @@ TEST_F(MapFileTest, AKeypointOutsideTheImageIsOneClearError) {
 
 TEST_F(MapFileTest, TheLensIsPartOfTheCameraAndVersionOneFilesStillLoad) {
   auto expect = [](const std::string& error, const std::string& needle) {
-    EXPECT_NE(error.find(needle), std::string::npos) << error;
+    EXPECT_THAT(error, ::testing::HasSubstr(needle)) << error;
   };
   // A version 2 file (one map) loads as it did.
   const std::string v2 = as_version_2(bytes());

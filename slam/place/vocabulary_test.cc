@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -144,27 +145,27 @@ TEST(VocabularyFile, BadFilesFailWithOneClearLine) {
     std::ofstream(path, std::ios::binary) << content;
   };
   const std::string missing = temp_file("missing.voc");
-  EXPECT_NE(error_of(missing).find("no such vocabulary file"), std::string::npos);
+  EXPECT_THAT(error_of(missing), ::testing::HasSubstr("no such vocabulary file"));
 
   const std::string truncated = temp_file("truncated.voc");
   write(truncated, bytes.substr(0, bytes.size() / 2));
-  EXPECT_NE(error_of(truncated).find("truncated"), std::string::npos) << error_of(truncated);
+  EXPECT_THAT(error_of(truncated), ::testing::HasSubstr("truncated")) << error_of(truncated);
 
   const std::string corrupt = temp_file("corrupt.voc");
   std::string flipped = bytes;
   flipped[bytes.size() / 2] ^= 0x10;
   write(corrupt, flipped);
-  EXPECT_NE(error_of(corrupt).find("checksum"), std::string::npos) << error_of(corrupt);
+  EXPECT_THAT(error_of(corrupt), ::testing::HasSubstr("checksum")) << error_of(corrupt);
 
   const std::string wide = temp_file("wide.voc");
   std::string other_size = bytes;
   other_size[12] = 64;  // the descriptor-bytes field
   write(wide, other_size);
-  EXPECT_NE(error_of(wide).find("64-byte descriptors"), std::string::npos) << error_of(wide);
+  EXPECT_THAT(error_of(wide), ::testing::HasSubstr("64-byte descriptors")) << error_of(wide);
 
   const std::string text = temp_file("text.voc");
   write(text, "# an ORB-SLAM2 text vocabulary\n10 6 0 0\n");
-  EXPECT_NE(error_of(text).find("not a depot vocabulary"), std::string::npos) << error_of(text);
+  EXPECT_THAT(error_of(text), ::testing::HasSubstr("not a depot vocabulary")) << error_of(text);
 
   for (const std::string& p : {missing, truncated, corrupt, wide, text})
     EXPECT_EQ(error_of(p).find('\n'), std::string::npos);

@@ -21,6 +21,7 @@
 #include <sstream>
 #include <thread>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/error.h"
@@ -286,8 +287,8 @@ TEST(RunSystem, ScratchIsNamedWithThePidAndGoesWithTheRun) {
   } catch (const Error& e) {
     error = e.what();
   }
-  EXPECT_NE(error.find("its trajectory: {trajectory}:1:"), std::string::npos) << error;
-  EXPECT_EQ(error.find(temp.string()), std::string::npos) << error;
+  EXPECT_THAT(error, ::testing::HasSubstr("its trajectory: {trajectory}:1:")) << error;
+  EXPECT_THAT(error, ::testing::Not(::testing::HasSubstr(temp.string()))) << error;
   EXPECT_TRUE(fs::is_empty(temp));
   if (old_tmpdir)
     setenv("TMPDIR", saved.c_str(), 1);

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/error.h"
@@ -58,7 +59,7 @@ TEST(SystemSpec, BadFilesNameTheFileAndTheProblem) {
       std::string::npos);
   EXPECT_NE(load_error("no_command", "trajectory_format: tum\n").find("no command"),
             std::string::npos);
-  EXPECT_NE(load_error("empty_command", "command: []\n").find("non-empty list"), std::string::npos);
+  EXPECT_THAT(load_error("empty_command", "command: []\n"), ::testing::HasSubstr("non-empty list"));
   EXPECT_NE(load_error("format", "command: [x, \"{trajectory}\"]\ntrajectory_format: g2o\n")
                 .find(":2: unknown trajectory_format 'g2o'"),
             std::string::npos);

@@ -1,5 +1,6 @@
 #include "tools/harness/job/sweep_jobs.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -51,7 +52,7 @@ TEST(SweepJobs, AccuracyOfARunAndOfOneThatLostTheCamera) {
   const std::vector<StampedPose> two(estimate.end() - 2, estimate.end());
   EXPECT_NO_THROW(add_accuracy(truth, two, (plot / "lost.svg").string(), lost));
   EXPECT_FALSE(lost.ok);
-  EXPECT_NE(lost.error.find("too few to evaluate"), std::string::npos) << lost.error;
+  EXPECT_THAT(lost.error, ::testing::HasSubstr("too few to evaluate")) << lost.error;
   EXPECT_TRUE(std::isnan(lost.ate_rmse));
   EXPECT_FALSE(fs::exists(plot / "lost.svg"));
   fs::remove_all(plot);

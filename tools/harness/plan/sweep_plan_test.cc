@@ -1,5 +1,6 @@
 #include "tools/harness/plan/sweep_plan.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -75,7 +76,7 @@ TEST(SweepPlan, ParametersMatterOnlyToTheModesTheyReach) {
 TEST(SweepPlan, RefusesLevelsThatWouldShareAFolder) {
   SweepSpec s = grid_spec();
   s.vary = {{"scenario.name", {"a b", "a_b"}}};
-  EXPECT_NE(error_of([&] { make_sweep_plan(s); }).find("share the folder"), std::string::npos);
+  EXPECT_THAT(error_of([&] { make_sweep_plan(s); }), ::testing::HasSubstr("share the folder"));
 }
 
 TEST(SweepPlan, SendsEachParameterToItsTarget) {
@@ -139,7 +140,7 @@ TEST(SweepJobState, ARecordIsDoneOnlyWhenItReadsBackAsThisJobs) {
   write_record(layout.dataset_record(render.id), to_json(d));
   s = job_record_state(layout, render);
   EXPECT_EQ(s.state, RecordState::kCorrupt);
-  EXPECT_NE(s.problem.find("the record of job '" + other.id + "'"), std::string::npos) << s.problem;
+  EXPECT_THAT(s.problem, ::testing::HasSubstr("the record of job '" + other.id + "'")) << s.problem;
 
   d.id = render.id;
   write_record(layout.dataset_record(render.id), to_json(d));

@@ -1,5 +1,6 @@
 #include "tools/harness/plan/sweep_spec.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/error.h"
@@ -44,23 +45,23 @@ TEST(SweepSpec, RejectsUnknownNamesAndBadGrids) {
   EXPECT_THROW(parse_sweep_parameter("load", "--vary"), Error);
   SweepSpec s = small_spec();
   s.modes = {"orb", "orb"};
-  EXPECT_NE(error_of([&] { validate(s, "x"); }).find("given twice"), std::string::npos);
+  EXPECT_THAT(error_of([&] { validate(s, "x"); }), ::testing::HasSubstr("given twice"));
   s = small_spec();
   s.vary[0].values = {"1", "1"};
-  EXPECT_NE(error_of([&] { validate(s, "x"); }).find("repeats a level"), std::string::npos);
+  EXPECT_THAT(error_of([&] { validate(s, "x"); }), ::testing::HasSubstr("repeats a level"));
   s = small_spec();
   s.fixed.push_back({"load", {"2"}});
-  EXPECT_NE(error_of([&] { validate(s, "x"); }).find("set the same thing"), std::string::npos);
+  EXPECT_THAT(error_of([&] { validate(s, "x"); }), ::testing::HasSubstr("set the same thing"));
   s = small_spec();  // an alias and its full name reach one setting
   s.vary.push_back({"scenario.dynamic_load", {"2"}});
   EXPECT_NE(error_of([&] { validate(s, "x"); }).find("'load' and 'scenario.dynamic_load'"),
             std::string::npos);
   s = small_spec();  // a key and a key inside it
   s.vary = {{"scenario.sensor", {"{}"}}, {"rgb_noise", {"1"}}};
-  EXPECT_NE(error_of([&] { validate(s, "x"); }).find("set the same thing"), std::string::npos);
+  EXPECT_THAT(error_of([&] { validate(s, "x"); }), ::testing::HasSubstr("set the same thing"));
   s = small_spec();
   s.modes = {"orb+slam"};
-  EXPECT_NE(error_of([&] { validate(s, "x"); }).find("unknown mode"), std::string::npos);
+  EXPECT_THAT(error_of([&] { validate(s, "x"); }), ::testing::HasSubstr("unknown mode"));
 }
 
 TEST(SweepSpec, SurvivesAJsonRoundTrip) {

@@ -1,5 +1,6 @@
 #include "tools/harness/report/result_table.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,10 +20,10 @@ Table example() {
 
 TEST(ResultTable, MarkdownShowsMeanAndStdAndDashesForMissing) {
   const std::string md = to_markdown(example());
-  EXPECT_NE(md.find("## Ablation"), std::string::npos);
-  EXPECT_NE(md.find("| scenario | orb | Eq. 9 |\n|---|---:|---:|"), std::string::npos);
+  EXPECT_THAT(md, ::testing::HasSubstr("## Ablation"));
+  EXPECT_THAT(md, ::testing::HasSubstr("| scenario | orb | Eq. 9 |\n|---|---:|---:|"));
   EXPECT_NE(md.find("| walk, fast | 0.7322 ± 0.0512 | 98.3 % |"), std::string::npos);
-  EXPECT_NE(md.find("| sit | – | – |"), std::string::npos);
+  EXPECT_THAT(md, ::testing::HasSubstr("| sit | – | – |"));
 }
 
 TEST(ResultTable, CsvHasNumbersOnlyAndQuotesText) {
@@ -32,8 +33,8 @@ TEST(ResultTable, CsvHasNumbersOnlyAndQuotesText) {
 
 TEST(ResultTable, HtmlEscapesText) {
   const std::string html = to_html(example());
-  EXPECT_NE(html.find("<p>ATE &lt;m&gt;</p>"), std::string::npos);
-  EXPECT_NE(html.find("<td class=\"num\">0.7322 ± 0.0512</td>"), std::string::npos);
+  EXPECT_THAT(html, ::testing::HasSubstr("<p>ATE &lt;m&gt;</p>"));
+  EXPECT_THAT(html, ::testing::HasSubstr("<td class=\"num\">0.7322 ± 0.0512</td>"));
 }
 
 }  // namespace

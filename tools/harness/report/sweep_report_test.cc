@@ -3,6 +3,7 @@
 #include "tools/harness/report/sweep_report.h"
 #include "common/testing/scratch_folder.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -75,10 +76,10 @@ TEST_F(SweepReportTest, WritesTablesCsvPlotsAndOneSelfContainedPage) {
                     "| -798.50 ± 0.50 | -1597.0 | 6 of 6 |"),
             std::string::npos)
       << md;
-  EXPECT_NE(md.find("| walk | 0 |"), std::string::npos);
-  EXPECT_NE(md.find("3 of 6"), std::string::npos);
-  EXPECT_NE(md.find("paper Table 3"), std::string::npos);
-  EXPECT_NE(md.find("paper Table 4"), std::string::npos);
+  EXPECT_THAT(md, ::testing::HasSubstr("| walk | 0 |"));
+  EXPECT_THAT(md, ::testing::HasSubstr("3 of 6"));
+  EXPECT_THAT(md, ::testing::HasSubstr("paper Table 3"));
+  EXPECT_THAT(md, ::testing::HasSubstr("paper Table 4"));
   // Every frame counted: full's trajectory holds 90 %, its two maps 95 %.
   EXPECT_NE(md.find("| walk | 2 | full | 0.0115 ± 0.0005 | 90.0 % | 95.0 % | 2.0 ± 0.0 | "
                     "0.0200 ± 0.0000 |"),
@@ -90,22 +91,23 @@ TEST_F(SweepReportTest, WritesTablesCsvPlotsAndOneSelfContainedPage) {
     EXPECT_TRUE(fs::is_regular_file(root / "report" / csv)) << csv;
 
   const std::string html = read(files.html);
-  EXPECT_EQ(html.find("<?xml"), std::string::npos);  // SVGs are inlined without declarations
-  EXPECT_EQ(html.find("src="), std::string::npos);   // nothing loaded from elsewhere
-  EXPECT_EQ(html.find("href="), std::string::npos);
-  EXPECT_NE(html.find("ATE RMSE vs load"), std::string::npos);
-  EXPECT_NE(html.find("15 of 18 runs finished"), std::string::npos);
+  EXPECT_THAT(html, ::testing::Not(
+                        ::testing::HasSubstr("<?xml")));  // SVGs are inlined without declarations
+  EXPECT_THAT(html, ::testing::Not(::testing::HasSubstr("src=")));  // nothing loaded from elsewhere
+  EXPECT_THAT(html, ::testing::Not(::testing::HasSubstr("href=")));
+  EXPECT_THAT(html, ::testing::HasSubstr("ATE RMSE vs load"));
+  EXPECT_THAT(html, ::testing::HasSubstr("15 of 18 runs finished"));
   // Default trajectory figures: orb and full of the last level, seed 1.
-  EXPECT_NE(html.find("traj-walk__load-2__s1__orb\""), std::string::npos);
-  EXPECT_NE(html.find("traj-walk__load-2__s1__full\""), std::string::npos);
-  EXPECT_EQ(html.find("traj-walk__load-1__s1__orb\""), std::string::npos);
+  EXPECT_THAT(html, ::testing::HasSubstr("traj-walk__load-2__s1__orb\""));
+  EXPECT_THAT(html, ::testing::HasSubstr("traj-walk__load-2__s1__full\""));
+  EXPECT_THAT(html, ::testing::Not(::testing::HasSubstr("traj-walk__load-1__s1__orb\"")));
 }
 
 TEST_F(SweepReportTest, ShowsTheTrajectoryFiguresAskedFor) {
   const ReportFiles files = write_sweep_report(plan, layout, {"walk__load-1__s2__orb+yolo"});
   const std::string html = read(files.html);
-  EXPECT_NE(html.find("traj-walk__load-1__s2__orb+yolo\""), std::string::npos);
-  EXPECT_EQ(html.find("traj-walk__load-2__s1__orb\""), std::string::npos);
+  EXPECT_THAT(html, ::testing::HasSubstr("traj-walk__load-1__s2__orb+yolo\""));
+  EXPECT_THAT(html, ::testing::Not(::testing::HasSubstr("traj-walk__load-2__s1__orb\"")));
 }
 
 TEST_F(SweepReportTest, RefusesAnUnknownFigureRunBeforeWritingAnything) {
