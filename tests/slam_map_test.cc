@@ -83,7 +83,7 @@ TEST(SlamMap, ASavedMapLocalisesExactlyAsTheMapInMemory) {
   slam::ScaleLevels saved_levels;
   size_t points = 0;
   {
-    std::lock_guard<std::mutex> lock(saved_map.mutex());
+    MutexLock lock(saved_map.mutex());
     points = slam::load_map_file_as_saved(map_path, saved_levels, saved_map).points;
     for (const slam::MapPoint* mp : saved_map.map_points())
       EXPECT_GT(mp->n_observations(), 0) << "point " << mp->id << " is saved but unobserved";

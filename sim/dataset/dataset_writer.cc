@@ -70,7 +70,7 @@ DatasetWriter::DatasetWriter(const DatasetOptions& options, const Scenario& scen
 
 DatasetWriter::~DatasetWriter() {
   {
-    std::lock_guard<std::mutex> lock(mutex_);
+    MutexLock lock(mutex_);
     closing_ = true;
   }
   cv_.notify_all();
@@ -79,7 +79,7 @@ DatasetWriter::~DatasetWriter() {
 }
 
 void DatasetWriter::rethrow_worker_error() {
-  std::lock_guard<std::mutex> lock(mutex_);
+  MutexLock lock(mutex_);
   if (error_) std::rethrow_exception(error_);
 }
 
@@ -124,8 +124,8 @@ void DatasetWriter::add(RenderedFrame frame, const FrameTruth& truth) {
   }
 
   Job job{std::move(frame), truth.rgb_timestamp, rs, ds, truth.index, truth.covered, truth.capture};
-  std::unique_lock<std::mutex> lock(mutex_);
-  cv_.wait(lock, [&] { return queue_.size() < kMaxQueued || error_; });
+  MutexLock lock(mutex_);
+  while (queue_.size() >= kMaxQueued && !error_) mutex_.wait(cv_);
   if (error_) std::rethrow_exception(error_);
   queue_.push_back(std::move(job));
   lock.unlock();
@@ -137,8 +137,8 @@ void DatasetWriter::worker() {
   while (true) {
     Job job;
     {
-      std::unique_lock<std::mutex> lock(mutex_);
-      cv_.wait(lock, [&] { return closing_ || !queue_.empty(); });
+      MutexLock lock(mutex_);
+      while (!closing_ && queue_.empty()) mutex_.wait(cv_);
       if (queue_.empty()) break;
       job = std::move(queue_.front());
       queue_.pop_front();
@@ -147,12 +147,12 @@ void DatasetWriter::worker() {
     try {
       write_job(job, local);
     } catch (...) {
-      std::lock_guard<std::mutex> lock(mutex_);
+      MutexLock lock(mutex_);
       if (!error_) error_ = std::current_exception();
       cv_.notify_all();
     }
   }
-  std::lock_guard<std::mutex> lock(mutex_);
+  MutexLock lock(mutex_);
   totals_.sensor_ms += local.sensor_ms;
   totals_.encode_write_ms += local.encode_write_ms;
   totals_.bytes += local.bytes;
@@ -322,7 +322,7 @@ void DatasetWriter::write_text_files() {
 
 WriterTimings DatasetWriter::finish() {
   {
-    std::lock_guard<std::mutex> lock(mutex_);
+    MutexLock lock(mutex_);
     closing_ = true;
   }
   cv_.notify_all();
@@ -331,6 +331,7 @@ WriterTimings DatasetWriter::finish() {
   rethrow_worker_error();
   write_text_files();
   dir_->commit();
+  MutexLock lock(mutex_);
   return totals_;
 }
 

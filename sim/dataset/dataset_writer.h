@@ -5,16 +5,21 @@
 //   boxes.txt boxes_yolo/ classes.txt info.json [yolo/]
 // Image encoding runs on writer threads; the folder appears only when
 // complete (StagedDirectory).
+//
+// Threads: add() and finish() run on the caller's thread, which alone owns
+// the text tables; the writer threads take jobs from the queue. mutex_
+// guards the queue, the closing flag, the first worker error and the
+// totals (annotated for clang's analysis, common/mutex.h).
 #include <condition_variable>
 #include <deque>
 #include <exception>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "common/mutex.h"
 #include "common/staged_directory.h"
 #include "dataset/boxes.h"
 #include "dataset/exposures.h"
@@ -79,13 +84,13 @@ class DatasetWriter {
   const std::vector<Instance>& instances_;
   std::unique_ptr<StagedDirectory> dir_;
 
-  std::mutex mutex_;
+  Mutex mutex_;
   std::condition_variable cv_;
-  std::deque<Job> queue_;
-  bool closing_ = false;
-  std::exception_ptr error_;
+  std::deque<Job> queue_ DEPOT_GUARDED_BY(mutex_);
+  bool closing_ DEPOT_GUARDED_BY(mutex_) = false;
+  std::exception_ptr error_ DEPOT_GUARDED_BY(mutex_);
   std::vector<std::thread> threads_;
-  WriterTimings totals_;
+  WriterTimings totals_ DEPOT_GUARDED_BY(mutex_);
 
   std::string rgb_txt_, depth_txt_, assoc_txt_, gt_txt_;
   std::string rows_txt_;  // groundtruth_rows.txt, empty for a global shutter

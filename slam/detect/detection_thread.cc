@@ -16,7 +16,7 @@ DetectionThread::DetectionThread(Detector& detector, size_t max_jobs, PersonSegm
 
 DetectionThread::~DetectionThread() {
   {
-    std::lock_guard<std::mutex> lock(mutex_);
+    MutexLock lock(mutex_);
     stop_ = true;
   }
   cv_.notify_all();
@@ -29,9 +29,15 @@ DetectionThread::Job* DetectionThread::find(long frame_index) {
   return nullptr;
 }
 
+DetectionThread::Job* DetectionThread::first_queued() {
+  for (Job& job : jobs_)
+    if (job.state == JobState::kQueued) return &job;
+  return nullptr;
+}
+
 void DetectionThread::submit(const cv::Mat& bgr, double timestamp, long frame_index) {
   {
-    std::lock_guard<std::mutex> lock(mutex_);
+    MutexLock lock(mutex_);
     if (find(frame_index)) return;
     if (jobs_.size() >= max_jobs_)
       fail("frame " + std::to_string(frame_index), "detection queue full (" +
@@ -49,14 +55,14 @@ void DetectionThread::submit(const cv::Mat& bgr, double timestamp, long frame_in
 std::vector<Detection> DetectionThread::wait(long frame_index, double* waited_ms, double* detect_ms,
                                              cv::Mat* person_mask, double* segment_ms) {
   const auto t0 = std::chrono::steady_clock::now();
-  std::unique_lock<std::mutex> lock(mutex_);
+  MutexLock lock(mutex_);
   if (!find(frame_index))
     fail("frame " + std::to_string(frame_index), "was not submitted for detection");
-  Job* job = nullptr;
-  cv_.wait(lock, [&] {
+  Job* job = find(frame_index);
+  while (job && job->state != JobState::kDone) {
+    mutex_.wait(cv_);
     job = find(frame_index);
-    return !job || job->state == JobState::kDone;
-  });
+  }
   if (!job) fail("frame " + std::to_string(frame_index), "was waited for twice at once");
   if (waited_ms)
     *waited_ms =
@@ -78,7 +84,7 @@ std::vector<Detection> DetectionThread::wait(long frame_index, double* waited_ms
 }
 
 size_t DetectionThread::queued() const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  MutexLock lock(mutex_);
   return jobs_.size();
 }
 
@@ -88,17 +94,12 @@ void DetectionThread::run() {
     double timestamp = 0;
     long index = 0;
     {
-      std::unique_lock<std::mutex> lock(mutex_);
-      Job* next = nullptr;
-      cv_.wait(lock, [&] {
-        next = nullptr;
-        for (Job& job : jobs_)
-          if (job.state == JobState::kQueued) {
-            next = &job;
-            break;
-          }
-        return stop_ || next;
-      });
+      MutexLock lock(mutex_);
+      Job* next = first_queued();
+      while (!stop_ && !next) {
+        mutex_.wait(cv_);
+        next = first_queued();
+      }
       if (stop_) return;
       next->state = JobState::kRunning;
       image = next->image;
@@ -127,7 +128,7 @@ void DetectionThread::run() {
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count();
     image.release();
     {
-      std::lock_guard<std::mutex> lock(mutex_);
+      MutexLock lock(mutex_);
       Job* job = find(index);  // a running job is never erased
       job->image.release();
       job->result = std::move(result);

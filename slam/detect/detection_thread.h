@@ -13,10 +13,10 @@
 #include <condition_variable>
 #include <deque>
 #include <exception>
-#include <mutex>
 #include <thread>
 #include <vector>
 
+#include "common/mutex.h"
 #include "slam/detect/detection.h"
 #include "slam/detect/person_segmenter.h"
 
@@ -70,16 +70,17 @@ class DetectionThread {
     double segment_ms = 0;
     std::exception_ptr error;
   };
-  Job* find(long frame_index);  // needs mutex_
+  Job* find(long frame_index) DEPOT_REQUIRES(mutex_);
+  Job* first_queued() DEPOT_REQUIRES(mutex_);  // the oldest job not yet started
   void run();
 
   Detector& detector_;          // worker thread only
   PersonSegmenter* segmenter_;  // worker thread only; may be null
   const size_t max_jobs_;
-  mutable std::mutex mutex_;
+  mutable Mutex mutex_;
   std::condition_variable cv_;
-  std::deque<Job> jobs_;  // submission order; frame indices unique
-  bool stop_ = false;
+  std::deque<Job> jobs_ DEPOT_GUARDED_BY(mutex_);  // submission order; frame indices unique
+  bool stop_ DEPOT_GUARDED_BY(mutex_) = false;
   std::thread thread_;  // last: starts after the members above exist
 };
 

@@ -12,6 +12,6 @@
 namespace depot::slam {
 
 // The caller holds map.mutex().
-std::vector<PlyPoint> map_point_cloud(const Map& map);
+std::vector<PlyPoint> map_point_cloud(const Map& map) DEPOT_REQUIRES(map.mutex());
 
 }  // namespace depot::slam

@@ -200,7 +200,8 @@ MapFileInfo read_header(const std::string& path, std::string& bytes) {
 // Everything after the header, into `map`; `camera` and `levels` are the
 // keyframes' (checked against the file by the callers).
 void read_body(const std::string& bytes, const std::string& path, MapFileInfo& info,
-               const PinholeCamera& camera, const ScaleLevels& levels, Map& map) {
+               const PinholeCamera& camera, const ScaleLevels& levels, Map& map)
+    DEPOT_REQUIRES(map.mutex()) {
   if (map.n_keyframes() > 0) fail(path, "a map can only be loaded before any frame is tracked");
   BinaryReader in(bytes, path, "map", info.header_bytes);
 

@@ -39,7 +39,8 @@ struct MapFileInfo {
 // its id and origin, through a staged file (a failure leaves no file, and no
 // half file ever replaces an old one). The caller holds map.mutex().
 void save_map_file(const Map& map, const PinholeCamera& camera, const ScaleLevels& levels,
-                   uint32_t vocabulary_identity, const std::string& path);
+                   uint32_t vocabulary_identity, const std::string& path)
+    DEPOT_REQUIRES(map.mutex());
 
 // Reads a saved map into `map`, which must be empty; keyframes and points
 // are renumbered in their saved order. Throws depot::Error naming the file
@@ -47,11 +48,13 @@ void save_map_file(const Map& map, const PinholeCamera& camera, const ScaleLevel
 // (checksum), another version, and a map built with another vocabulary,
 // camera or ORB pyramid than the run's. The caller holds map.mutex().
 MapFileInfo load_map_file(const std::string& path, const PinholeCamera& camera,
-                          const ScaleLevels& levels, uint32_t vocabulary_identity, Map& map);
+                          const ScaleLevels& levels, uint32_t vocabulary_identity, Map& map)
+    DEPOT_REQUIRES(map.mutex());
 
 // Reads a saved map with what it was built with (its camera, its ORB
 // pyramid, which `levels` receives and the keyframes then point to; any
 // vocabulary), for tools that inspect or export it. Same errors otherwise.
-MapFileInfo load_map_file_as_saved(const std::string& path, ScaleLevels& levels, Map& map);
+MapFileInfo load_map_file_as_saved(const std::string& path, ScaleLevels& levels, Map& map)
+    DEPOT_REQUIRES(map.mutex());
 
 }  // namespace depot::slam

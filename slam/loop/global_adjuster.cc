@@ -71,7 +71,7 @@ void GlobalAdjuster::start() {
     run();
     return;
   }
-  std::lock_guard<std::mutex> lock(mutex_);
+  MutexLock lock(mutex_);
   running_ = true;
   thread_ = std::thread([this] { run(); });
 }
@@ -84,24 +84,24 @@ void GlobalAdjuster::abort() {
 void GlobalAdjuster::wait() {
   std::thread finished;
   {
-    std::lock_guard<std::mutex> lock(mutex_);
+    MutexLock lock(mutex_);
     finished = std::move(thread_);
   }
   if (finished.joinable()) finished.join();
 }
 
 bool GlobalAdjuster::running() const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  MutexLock lock(mutex_);
   return running_;
 }
 
 int GlobalAdjuster::completed() const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  MutexLock lock(mutex_);
   return completed_;
 }
 
 std::exception_ptr GlobalAdjuster::failure() const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  MutexLock lock(mutex_);
   return failure_;
 }
 
@@ -111,15 +111,15 @@ void GlobalAdjuster::run() {
     const GlobalBaResult result = global_bundle_adjustment(map_, &abort_, iterations_);
     if (result.completed && !abort_) {
       const MappingPause paused(mapper_);  // resumed after the map lock is released
-      std::lock_guard<std::mutex> lock(map_.mutex());
+      MutexLock lock(map_.mutex());
       apply_global_adjustment(map_, result);
       applied = true;
     }
   } catch (...) {
-    std::lock_guard<std::mutex> lock(mutex_);
+    MutexLock lock(mutex_);
     if (!failure_) failure_ = std::current_exception();
   }
-  std::lock_guard<std::mutex> lock(mutex_);
+  MutexLock lock(mutex_);
   completed_ += applied;
   running_ = false;
 }

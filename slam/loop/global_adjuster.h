@@ -19,9 +19,9 @@
 // runs.
 #include <atomic>
 #include <exception>
-#include <mutex>
 #include <thread>
 
+#include "common/mutex.h"
 #include "slam/data/map.h"
 #include "slam/optimize/optimizer.h"
 
@@ -33,7 +33,7 @@ class LocalMapper;
 // take the result; keyframes missing from it move with their spanning-tree
 // parent, points with their reference keyframe. The caller holds the map
 // lock (and has paused local mapping).
-void apply_global_adjustment(Map& map, const GlobalBaResult& result);
+void apply_global_adjustment(Map& map, const GlobalBaResult& result) DEPOT_REQUIRES(map.mutex());
 
 class GlobalAdjuster {
  public:
@@ -63,11 +63,11 @@ class GlobalAdjuster {
   const bool threaded_;
   const int iterations_;
   std::atomic<bool> abort_{false};
-  mutable std::mutex mutex_;
-  std::thread thread_;
-  bool running_ = false;
-  int completed_ = 0;
-  std::exception_ptr failure_;
+  mutable Mutex mutex_;
+  std::thread thread_ DEPOT_GUARDED_BY(mutex_);
+  bool running_ DEPOT_GUARDED_BY(mutex_) = false;
+  int completed_ DEPOT_GUARDED_BY(mutex_) = 0;
+  std::exception_ptr failure_ DEPOT_GUARDED_BY(mutex_);
 };
 
 }  // namespace depot::slam

@@ -32,7 +32,7 @@ TEST(GlobalAdjuster, ThreadedAdjustmentIsAppliedToTheMap) {
   EXPECT_FALSE(adjuster.running());
   EXPECT_EQ(adjuster.completed(), 1);
   EXPECT_FALSE(adjuster.failure());
-  std::lock_guard<std::mutex> lock(s.map.mutex());
+  MutexLock lock(s.map.mutex());
   const double after = reprojection_rmse(s.map), error_after = max_pose_error(s);
   std::printf("[global adjuster] rmse %.3f -> %.3f px, pose error %.4f -> %.4f m\n", before, after,
               error_before, error_after);
@@ -77,7 +77,7 @@ TEST(GlobalAdjuster, KeyFramesAndPointsMadeMeanwhileFollowTheirParentAndReferenc
   const Pose late_relative = late->T_cw * parent->T_cw.inverse();
   const Eigen::Vector3d late_point_in_camera = late->T_cw * late_point->position;
   {
-    std::lock_guard<std::mutex> lock(s.map.mutex());
+    MutexLock lock(s.map.mutex());
     apply_global_adjustment(s.map, result);
   }
   EXPECT_TRUE(parent->T_cw.isApprox(parent_after, 1e-12));

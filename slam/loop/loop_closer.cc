@@ -69,17 +69,17 @@ std::exception_ptr LoopCloser::failure() const {
 }
 
 int LoopCloser::refused() const {
-  std::lock_guard<std::mutex> lock(stats_mutex_);
+  MutexLock lock(stats_mutex_);
   return implausible_;
 }
 
 int LoopCloser::unconfirmed_merges() const {
-  std::lock_guard<std::mutex> lock(stats_mutex_);
+  MutexLock lock(stats_mutex_);
   return unconfirmed_merges_;
 }
 
 std::vector<LoopClosure> LoopCloser::closures() const {
-  std::lock_guard<std::mutex> lock(stats_mutex_);
+  MutexLock lock(stats_mutex_);
   return closures_;
 }
 
@@ -90,7 +90,7 @@ void LoopCloser::run_pending() {
 void LoopCloser::reset() {
   worker_.clear();
   global_.abort();
-  std::lock_guard<std::mutex> map_lock(map_.mutex());
+  MutexLock map_lock(map_.mutex());
   consistent_groups_.clear();
   last_loop_keyframe_ = -1;
 }
@@ -104,7 +104,7 @@ void LoopCloser::process(KeyFrame* kf) {
   std::vector<KeyFrame*> candidates;
   Loop loop;
   {
-    std::lock_guard<std::mutex> lock(map_.mutex());
+    MutexLock lock(map_.mutex());
     if (kf->bad || !detect(kf, candidates)) return;
     if (!compute_transform(kf, candidates, loop)) return;
   }
@@ -114,11 +114,11 @@ void LoopCloser::process(KeyFrame* kf) {
   if (is_merge) {
     bool confirmed;
     {
-      std::lock_guard<std::mutex> lock(map_.mutex());
+      MutexLock lock(map_.mutex());
       confirmed = !kf->bad && !loop.matched->bad && confirmed_by_neighbours(kf, loop);
     }
     if (!confirmed) {
-      std::lock_guard<std::mutex> qlock(stats_mutex_);
+      MutexLock qlock(stats_mutex_);
       ++unconfirmed_merges_;
       return;
     }
@@ -159,7 +159,9 @@ bool LoopCloser::detect(KeyFrame* kf, std::vector<KeyFrame*>& out) {
     bool consistent_with_any = false;
     bool accepted = false;
     for (size_t g = 0; g < consistent_groups_.size(); ++g) {
-      const auto& [previous, count] = consistent_groups_[g];
+      // Not a structured binding: C++17 lambdas may not capture one (clang refuses).
+      const std::set<KeyFrame*, ById>& previous = consistent_groups_[g].first;
+      const int count = consistent_groups_[g].second;
       const bool shares = std::any_of(group.begin(), group.end(),
                                       [&](KeyFrame* k) { return previous.count(k) > 0; });
       if (!shares) continue;
@@ -258,7 +260,7 @@ bool LoopCloser::compute_transform(KeyFrame* kf, const std::vector<KeyFrame*>& c
     for (MapPoint* mp : view.map_points) n += mp != nullptr;
     if (n < params_.min_loop_matches) continue;
     if (candidate->map_id == kf->map_id && !plausible_correction(*kf, *candidate, view.T_cw)) {
-      std::lock_guard<std::mutex> qlock(stats_mutex_);
+      MutexLock qlock(stats_mutex_);
       ++implausible_;
       continue;
     }
@@ -275,7 +277,8 @@ bool LoopCloser::compute_transform(KeyFrame* kf, const std::vector<KeyFrame*>& c
 namespace {
 
 // Path length through the keyframes of one map with ids in [from_id, to_id].
-double path_between(const Map& map, int map_id, long from_id, long to_id) {
+double path_between(const Map& map, int map_id, long from_id, long to_id)
+    DEPOT_REQUIRES(map.mutex()) {
   double path = 0;
   const KeyFrame* previous = nullptr;
   for (const KeyFrame* k : map.keyframes()) {
@@ -302,7 +305,7 @@ bool LoopCloser::plausible_correction(const KeyFrame& kf, const KeyFrame& matche
 bool LoopCloser::correct(KeyFrame* kf, Loop& loop) {
   const MappingPause paused(mapper_);  // resumed after the map lock is released
   {
-    std::lock_guard<std::mutex> lock(map_.mutex());
+    MutexLock lock(map_.mutex());
     if (kf->bad || loop.matched->bad) return false;
     kf->update_connections();
     std::vector<KeyFrame*> connected = kf->covisibles();
@@ -333,7 +336,7 @@ bool LoopCloser::correct(KeyFrame* kf, Loop& loop) {
     kf->loop_edges.insert(loop.matched);
     loop.matched->loop_edges.insert(kf);
     last_loop_keyframe_ = kf->id;
-    std::lock_guard<std::mutex> qlock(stats_mutex_);
+    MutexLock qlock(stats_mutex_);
     closures_.push_back({kf->id, loop.matched->id, kf->timestamp, loop.n_matches, moved_m,
                          path_between(map_, kf->map_id, loop.matched->id, kf->id)});
   }
@@ -398,7 +401,7 @@ bool LoopCloser::confirmed_by_neighbours(KeyFrame* kf, const Loop& loop) const {
 bool LoopCloser::merge(KeyFrame* kf, Loop& loop) {
   const MappingPause paused(mapper_);  // resumed after the map lock is released
   {
-    std::lock_guard<std::mutex> lock(map_.mutex());
+    MutexLock lock(map_.mutex());
     if (kf->bad || loop.matched->bad || kf->map_id == loop.matched->map_id) return false;
     const int kf_map = kf->map_id, matched_map = loop.matched->map_id;
     // kf's map frame into the matched map's: kf is at loop.T_cw there.
@@ -418,7 +421,7 @@ bool LoopCloser::merge(KeyFrame* kf, Loop& loop) {
     kf->loop_edges.insert(loop.matched);
     loop.matched->loop_edges.insert(kf);
     last_loop_keyframe_ = kf->id;
-    std::lock_guard<std::mutex> qlock(stats_mutex_);
+    MutexLock qlock(stats_mutex_);
     LoopClosure record;
     record.keyframe = kf->id;
     record.matched = loop.matched->id;

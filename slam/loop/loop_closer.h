@@ -32,10 +32,10 @@
 // caller's thread.
 #include <exception>
 #include <map>
-#include <mutex>
 #include <set>
 #include <vector>
 
+#include "common/mutex.h"
 #include "slam/data/map.h"
 #include "slam/loop/global_adjuster.h"
 #include "slam/mapping/keyframe_sink.h"
@@ -121,22 +121,28 @@ class LoopCloser : public KeyFrameSink {
  private:
   struct Loop;
   void process(KeyFrame* kf);
-  bool detect(KeyFrame* kf, std::vector<KeyFrame*>& candidates);
-  bool compute_transform(KeyFrame* kf, const std::vector<KeyFrame*>& candidates, Loop& loop);
+  bool detect(KeyFrame* kf, std::vector<KeyFrame*>& candidates) DEPOT_REQUIRES(map_.mutex());
+  bool compute_transform(KeyFrame* kf, const std::vector<KeyFrame*>& candidates, Loop& loop)
+      DEPOT_REQUIRES(map_.mutex());
   // Whether moving kf to T_cw is drift it could have gathered since `matched`.
-  bool plausible_correction(const KeyFrame& kf, const KeyFrame& matched, const Pose& T_cw) const;
-  bool correct(KeyFrame* kf, Loop& loop);  // false when a keyframe turned bad
+  bool plausible_correction(const KeyFrame& kf, const KeyFrame& matched, const Pose& T_cw) const
+      DEPOT_REQUIRES(map_.mutex());
+  bool correct(KeyFrame* kf, Loop& loop)
+      DEPOT_EXCLUDES(map_.mutex());  // false when a keyframe turned bad
   // Whether kf's covisibles agree with a merge's transform (see above).
-  bool confirmed_by_neighbours(KeyFrame* kf, const Loop& loop) const;
-  bool merge(KeyFrame* kf, Loop& loop);  // false when a keyframe turned bad
+  bool confirmed_by_neighbours(KeyFrame* kf, const Loop& loop) const DEPOT_REQUIRES(map_.mutex());
+  bool merge(KeyFrame* kf, Loop& loop)
+      DEPOT_EXCLUDES(map_.mutex());  // false when a keyframe turned bad
   // Replaces kf's points by the loop's where they matched and fuses the
   // loop's points into `connected`; returns the covisibility links that
   // appeared across the loop (kf -> matched among them).
   std::map<KeyFrame*, std::set<KeyFrame*, ById>, ById> fuse_across(
-      KeyFrame* kf, const Loop& loop, const std::vector<KeyFrame*>& connected);
+      KeyFrame* kf, const Loop& loop, const std::vector<KeyFrame*>& connected)
+      DEPOT_REQUIRES(map_.mutex());
   void optimize_essential_graph(KeyFrame* kf, KeyFrame* matched,
                                 const std::map<KeyFrame*, Pose, ById>& original,
-                                const std::map<KeyFrame*, std::set<KeyFrame*, ById>, ById>& links);
+                                const std::map<KeyFrame*, std::set<KeyFrame*, ById>, ById>& links)
+      DEPOT_REQUIRES(map_.mutex());
 
   Map& map_;
   KeyFrameDatabase& places_;
@@ -147,10 +153,11 @@ class LoopCloser : public KeyFrameSink {
   std::vector<std::pair<std::set<KeyFrame*, ById>, int>> consistent_groups_;
   long last_loop_keyframe_ = -1;
 
-  mutable std::mutex stats_mutex_;
-  std::vector<LoopClosure> closures_;
-  int implausible_ = 0;         // loops refused by plausible_correction
-  int unconfirmed_merges_ = 0;  // merges kf's covisibles did not confirm
+  mutable Mutex stats_mutex_;
+  std::vector<LoopClosure> closures_ DEPOT_GUARDED_BY(stats_mutex_);
+  int implausible_ DEPOT_GUARDED_BY(stats_mutex_) = 0;  // loops refused by plausible_correction
+  int unconfirmed_merges_ DEPOT_GUARDED_BY(stats_mutex_) =
+      0;  // merges kf's covisibles did not confirm
   GlobalAdjuster global_;
   KeyFrameWorker worker_;  // last: its thread may call process() at once
 };

@@ -16,7 +16,7 @@ KeyFrameWorker::~KeyFrameWorker() {
 
 bool KeyFrameWorker::push(KeyFrame* kf) {
   {
-    std::lock_guard<std::mutex> lock(mutex_);
+    MutexLock lock(mutex_);
     if (failure_) return false;  // nobody would process it
     queue_.push_back(kf);
   }
@@ -25,17 +25,17 @@ bool KeyFrameWorker::push(KeyFrame* kf) {
 }
 
 bool KeyFrameWorker::idle() const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  MutexLock lock(mutex_);
   return failure_ || (queue_.empty() && !busy_);
 }
 
 size_t KeyFrameWorker::queued() const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  MutexLock lock(mutex_);
   return queue_.size();
 }
 
 std::exception_ptr KeyFrameWorker::failure() const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  MutexLock lock(mutex_);
   return failure_;
 }
 
@@ -43,7 +43,7 @@ void KeyFrameWorker::run_pending() {
   while (true) {
     KeyFrame* kf = nullptr;
     {
-      std::lock_guard<std::mutex> lock(mutex_);
+      MutexLock lock(mutex_);
       if (failure_) std::rethrow_exception(failure_);
       if (queue_.empty()) return;
       kf = queue_.front();
@@ -56,7 +56,7 @@ void KeyFrameWorker::run_pending() {
 void KeyFrameWorker::clear() {
   while (true) {
     {
-      std::lock_guard<std::mutex> lock(mutex_);
+      MutexLock lock(mutex_);
       queue_.clear();
       if (!busy_) return;
     }
@@ -65,12 +65,12 @@ void KeyFrameWorker::clear() {
 }
 
 void KeyFrameWorker::request_pause() {
-  std::lock_guard<std::mutex> lock(mutex_);
+  MutexLock lock(mutex_);
   paused_ = true;
 }
 
 bool KeyFrameWorker::pause_requested() const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  MutexLock lock(mutex_);
   return paused_;
 }
 
@@ -81,7 +81,7 @@ void KeyFrameWorker::pause() {
 
 void KeyFrameWorker::resume() {
   {
-    std::lock_guard<std::mutex> lock(mutex_);
+    MutexLock lock(mutex_);
     paused_ = false;
   }
   cv_.notify_one();
@@ -90,7 +90,7 @@ void KeyFrameWorker::resume() {
 void KeyFrameWorker::stop() {
   if (!threaded_ || !thread_.joinable()) return;
   {
-    std::lock_guard<std::mutex> lock(mutex_);
+    MutexLock lock(mutex_);
     stop_ = true;
     paused_ = false;  // a paused worker would never see its queue end
   }
@@ -102,8 +102,8 @@ void KeyFrameWorker::thread_main() {
   while (true) {
     KeyFrame* kf = nullptr;
     {
-      std::unique_lock<std::mutex> lock(mutex_);
-      cv_.wait(lock, [&] { return stop_ || (!paused_ && !queue_.empty()); });
+      MutexLock lock(mutex_);
+      while (!stop_ && (paused_ || queue_.empty())) mutex_.wait(cv_);
       if (queue_.empty()) return;  // stop requested and nothing left
       kf = queue_.front();
       queue_.pop_front();
@@ -120,7 +120,7 @@ bool KeyFrameWorker::process_guarded(KeyFrame* kf) {
     process_(kf);
     return true;
   } catch (...) {
-    std::lock_guard<std::mutex> lock(mutex_);
+    MutexLock lock(mutex_);
     failure_ = std::current_exception();
     queue_.clear();
     return false;

@@ -15,8 +15,9 @@
 #include <deque>
 #include <exception>
 #include <functional>
-#include <mutex>
 #include <thread>
+
+#include "common/mutex.h"
 
 namespace depot::slam {
 
@@ -61,13 +62,13 @@ class KeyFrameWorker {
 
   const bool threaded_;
   const Process process_;
-  mutable std::mutex mutex_;
+  mutable Mutex mutex_;
   std::condition_variable cv_;
-  std::deque<KeyFrame*> queue_;
+  std::deque<KeyFrame*> queue_ DEPOT_GUARDED_BY(mutex_);
   std::atomic<bool> busy_{false};
-  bool paused_ = false;
-  bool stop_ = false;
-  std::exception_ptr failure_;
+  bool paused_ DEPOT_GUARDED_BY(mutex_) = false;
+  bool stop_ DEPOT_GUARDED_BY(mutex_) = false;
+  std::exception_ptr failure_ DEPOT_GUARDED_BY(mutex_);
   std::thread thread_;  // started last, once every member above exists
 };
 

@@ -44,7 +44,7 @@ size_t LocalMapper::queued() const {
 }
 
 LocalMapperStats LocalMapper::stats() const {
-  std::lock_guard<std::mutex> lock(stats_mutex_);
+  MutexLock lock(stats_mutex_);
   return stats_;
 }
 
@@ -87,33 +87,33 @@ void LocalMapper::process(KeyFrame* kf) {
   // triangulating), not for the whole keyframe: tracking waits for at most
   // one step, not for all of them.
   {
-    std::lock_guard<std::mutex> lock(map_.mutex());
+    MutexLock lock(map_.mutex());
     process_new_keyframe(kf);
     if (places_ && !kf->bad) places_->add(kf);
   }
   {
-    std::lock_guard<std::mutex> lock(map_.mutex());
+    MutexLock lock(map_.mutex());
     if (!kf->bad) cull_map_points(kf);
   }
   create_new_map_points(kf);
   {
-    std::lock_guard<std::mutex> lock(map_.mutex());
+    MutexLock lock(map_.mutex());
     if (queued() == 0 && !kf->bad) search_in_neighbors(kf);
     n_keyframes = map_.n_keyframes_in(kf->map_id);
   }
   if (queued() == 0 && n_keyframes > 2) {
     auto t0 = std::chrono::steady_clock::now();
     local_bundle_adjustment(kf, map_, &abort_ba_);
-    std::lock_guard<std::mutex> lock(stats_mutex_);
+    MutexLock lock(stats_mutex_);
     stats_.ba_ms +=
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   }
   {
-    std::lock_guard<std::mutex> lock(map_.mutex());
+    MutexLock lock(map_.mutex());
     if (!kf->bad) cull_keyframes(kf);
   }
   if (next_ && !kf->bad) next_->insert_keyframe(kf);
-  std::lock_guard<std::mutex> lock(stats_mutex_);
+  MutexLock lock(stats_mutex_);
   stats_.keyframes++;
 }
 
@@ -187,7 +187,7 @@ void LocalMapper::cull_map_points(KeyFrame* kf) {
     if (erase) {
       mp->set_bad();
       map_.erase_map_point(mp);
-      std::lock_guard<std::mutex> lock(stats_mutex_);
+      MutexLock lock(stats_mutex_);
       stats_.points_culled++;
       it = recent_points_.erase(it);
     } else {
@@ -203,12 +203,12 @@ void LocalMapper::create_new_map_points(KeyFrame* kf) {
   const double baseline = cam.bf / cam.fx;
   std::vector<KeyFrame*> neighbours;
   {
-    std::lock_guard<std::mutex> lock(map_.mutex());
+    MutexLock lock(map_.mutex());
     neighbours = kf->covisibles(10);
   }
   for (KeyFrame* kf2 : neighbours) {
     if (queued() > 0) return;  // more keyframes waiting: keep up with tracking
-    std::lock_guard<std::mutex> lock(map_.mutex());
+    MutexLock lock(map_.mutex());
     if (kf->bad || kf2->bad) continue;
     const Eigen::Vector3d c1 = kf->camera_center();
     const Pose T1w = kf->T_cw;
@@ -285,7 +285,7 @@ void LocalMapper::create_new_map_points(KeyFrame* kf) {
       mp->update_descriptor();
       mp->update_normal_and_depth();
       recent_points_.push_back(mp);
-      std::lock_guard<std::mutex> lock(stats_mutex_);
+      MutexLock lock(stats_mutex_);
       stats_.points_created++;
     }
   }
@@ -352,7 +352,7 @@ void LocalMapper::cull_keyframes(KeyFrame* kf) {
       if (!n->bad) continue;  // kept: it holds a loop edge
       map_.erase_keyframe(n);
       if (places_) places_->erase(n);
-      std::lock_guard<std::mutex> lock(stats_mutex_);
+      MutexLock lock(stats_mutex_);
       stats_.keyframes_culled++;
     }
   }

@@ -27,8 +27,8 @@
 //   finish() call it. A failed mapper counts as idle and drops new keyframes.
 #include <atomic>
 #include <list>
-#include <mutex>
 
+#include "common/mutex.h"
 #include "slam/data/map.h"
 #include "slam/mapping/keyframe_sink.h"
 #include "slam/mapping/keyframe_worker.h"
@@ -80,18 +80,18 @@ class LocalMapper : public KeyFrameSink {
  private:
   void process(KeyFrame* kf);
   void process_new_keyframe(KeyFrame* kf);
-  void cull_map_points(KeyFrame* kf);
-  void create_new_map_points(KeyFrame* kf);
+  void cull_map_points(KeyFrame* kf) DEPOT_REQUIRES(map_.mutex());
+  void create_new_map_points(KeyFrame* kf) DEPOT_EXCLUDES(map_.mutex());  // locks per neighbour
   void search_in_neighbors(KeyFrame* kf);
-  void cull_keyframes(KeyFrame* kf);
+  void cull_keyframes(KeyFrame* kf) DEPOT_REQUIRES(map_.mutex());
 
   Map& map_;
   KeyFrameDatabase* places_;
   std::atomic<bool> abort_ba_{false};
   KeyFrameSink* next_ = nullptr;
   std::list<MapPoint*> recent_points_;
-  mutable std::mutex stats_mutex_;
-  LocalMapperStats stats_;
+  mutable Mutex stats_mutex_;
+  LocalMapperStats stats_ DEPOT_GUARDED_BY(stats_mutex_);
   KeyFrameWorker worker_;  // last: its thread may call process() at once
 };
 

@@ -447,7 +447,7 @@ void local_bundle_adjustment(KeyFrame* kf, Map& map, const std::atomic<bool>* ab
 
   BaProblem ba;
   {
-    std::lock_guard<std::mutex> lock(map.mutex());
+    MutexLock lock(map.mutex());
     if (!kf || kf->bad) return;
     BaBuilder builder(ba);
     auto add_kf = [&](KeyFrame* k, bool fixed) {
@@ -486,7 +486,7 @@ void local_bundle_adjustment(KeyFrame* kf, Map& map, const std::atomic<bool>* ab
   for (const BaEdge& e : ba.edges)
     if (edge_is_bad(ba, e)) to_erase.push_back(&e);
 
-  std::lock_guard<std::mutex> lock(map.mutex());
+  MutexLock lock(map.mutex());
   for (const BaEdge* e : to_erase) {
     KeyFrame* k = ba.kfs[e->kf].kf;
     MapPoint* mp = ba.pts[e->pt].mp;
@@ -513,7 +513,7 @@ GlobalBaResult global_bundle_adjustment(Map& map, const std::atomic<bool>* abort
   GlobalBaResult result;
   BaProblem ba;
   {
-    std::lock_guard<std::mutex> lock(map.mutex());
+    MutexLock lock(map.mutex());
     if (!map.first_keyframe()) return result;
     BaBuilder builder(ba);
     // Every map of the atlas, each held by its origin (they share nothing).

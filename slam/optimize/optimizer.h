@@ -55,7 +55,7 @@ struct LocalBaOptions {
 // the call, or during the first pass, nothing changes; set during the second
 // pass, the first pass's result is applied.
 void local_bundle_adjustment(KeyFrame* kf, Map& map, const std::atomic<bool>* abort,
-                             const LocalBaOptions& options = {});
+                             const LocalBaOptions& options = {}) DEPOT_EXCLUDES(map.mutex());
 
 // Bundle adjustment of the whole map (after a loop closure): every non-bad
 // keyframe's pose (the map's first keyframe fixed) and every non-bad point,
@@ -73,7 +73,7 @@ struct GlobalBaResult {
   std::vector<std::pair<MapPoint*, Eigen::Vector3d>> points;
 };
 GlobalBaResult global_bundle_adjustment(Map& map, const std::atomic<bool>* abort,
-                                        int iterations = 10);
+                                        int iterations = 10) DEPOT_EXCLUDES(map.mutex());
 
 // RMS pixel distance between the (u, v) keypoints of `kf` and the projections
 // of their non-bad map points (points behind the camera count too, with their
@@ -82,6 +82,6 @@ GlobalBaResult global_bundle_adjustment(Map& map, const std::atomic<bool>* abort
 double reprojection_rmse(const KeyFrame* kf, size_t* n_used = nullptr);
 
 // Pooled RMS over all keyframes of the map. No locking.
-double reprojection_rmse(const Map& map);
+double reprojection_rmse(const Map& map) DEPOT_REQUIRES(map.mutex());
 
 }  // namespace depot::slam

@@ -18,13 +18,13 @@ void KeyFrameDatabase::describe(Frame& frame) const {
 }
 
 void KeyFrameDatabase::add(KeyFrame* kf) {
-  std::lock_guard<std::mutex> lock(mutex_);
+  MutexLock lock(mutex_);
   for (const auto& [word, weight] : kf->bow) index_[word].push_back(kf);
   ++n_keyframes_;
 }
 
 void KeyFrameDatabase::erase(KeyFrame* kf) {
-  std::lock_guard<std::mutex> lock(mutex_);
+  MutexLock lock(mutex_);
   bool found = false;
   for (const auto& [word, weight] : kf->bow) {
     auto it = index_.find(word);
@@ -37,13 +37,13 @@ void KeyFrameDatabase::erase(KeyFrame* kf) {
 }
 
 void KeyFrameDatabase::clear() {
-  std::lock_guard<std::mutex> lock(mutex_);
+  MutexLock lock(mutex_);
   index_.clear();
   n_keyframes_ = 0;
 }
 
 size_t KeyFrameDatabase::size() const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  MutexLock lock(mutex_);
   return n_keyframes_;
 }
 
@@ -63,7 +63,7 @@ std::vector<KeyFrame*> KeyFrameDatabase::candidates(const BowVector& bow, const 
   // Keyframes sharing words with the query, and how many.
   std::unordered_map<KeyFrame*, int> shared;
   {
-    std::lock_guard<std::mutex> lock(mutex_);
+    MutexLock lock(mutex_);
     for (const auto& [word, weight] : bow) {
       auto it = index_.find(word);
       if (it == index_.end()) continue;

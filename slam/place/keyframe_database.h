@@ -9,10 +9,10 @@
 // so their callers hold the map mutex. A keyframe's bag of words is written
 // before add() and never changed after.
 #include <memory>
-#include <mutex>
 #include <unordered_map>
 #include <vector>
 
+#include "common/mutex.h"
 #include "slam/data/keyframe.h"
 #include "slam/place/vocabulary.h"
 
@@ -54,9 +54,9 @@ class KeyFrameDatabase {
                                     int skip_map = -1) const;
 
   std::shared_ptr<const Vocabulary> vocabulary_;
-  mutable std::mutex mutex_;
-  std::unordered_map<WordId, std::vector<KeyFrame*>> index_;
-  size_t n_keyframes_ = 0;
+  mutable Mutex mutex_;
+  std::unordered_map<WordId, std::vector<KeyFrame*>> index_ DEPOT_GUARDED_BY(mutex_);
+  size_t n_keyframes_ DEPOT_GUARDED_BY(mutex_) = 0;
 };
 
 }  // namespace depot::slam

@@ -157,7 +157,8 @@ TrackResult System::track(const cv::Mat& bgr, const cv::Mat& depth, double times
     // frames tracked in the old map become ABANDONED.
     mapper_.reset();
     loop_closer_.reset();
-    std::lock_guard<std::mutex> lock(map_.mutex());
+    MutexLock lock(map_.mutex());
+    tracker_.map_mutex().assert_held();  // the tracker's map is map_
     if (settings_.tracker.atlas) {
       tracker_.discard_active_map();  // the atlas's other maps stay
     } else {
@@ -169,7 +170,7 @@ TrackResult System::track(const cv::Mat& bgr, const cv::Mat& depth, double times
   }
   auto t3 = std::chrono::steady_clock::now();
   if (result.state == TrackingState::kOk || result.state == TrackingState::kRelocalized) {
-    std::lock_guard<std::mutex> lock(map_.mutex());
+    MutexLock lock(map_.mutex());
     result.T_wc = tracker_.last_frame().T_cw.inverse();
   }
   result.timing = {ms_between(t0, t1), ms_between(t1, t2), ms_between(t2, t3), ms_between(t0, t3)};
@@ -191,17 +192,18 @@ void System::finish() {
 
 void System::load_map(const std::string& path) {
   if (next_frame_id_ > 0) fail(path, "a map can only be loaded before the first frame");
-  std::lock_guard<std::mutex> lock(map_.mutex());
+  MutexLock lock(map_.mutex());
   load_map_file(path, settings_.camera, levels_, vocabulary_identity(places_.vocabulary()), map_);
   for (KeyFrame* kf : map_.keyframes()) {
     places_.describe(*kf);
     places_.add(kf);
   }
+  tracker_.map_mutex().assert_held();  // the tracker's map is map_
   tracker_.relocalise_in_map();
 }
 
 void System::save_map(const std::string& path) const {
-  std::lock_guard<std::mutex> lock(map_.mutex());
+  MutexLock lock(map_.mutex());
   if (map_.n_keyframes() == 0) fail(path, "no map to save: no frame was tracked");
   // Every map of the atlas, each in its own frame.
   save_map_file(map_, settings_.camera, levels_, vocabulary_identity(places_.vocabulary()), path);
@@ -209,15 +211,16 @@ void System::save_map(const std::string& path) const {
 
 void System::start_localisation() {
   finish();
-  std::lock_guard<std::mutex> lock(map_.mutex());
+  MutexLock lock(map_.mutex());
   if (map_.n_keyframes() == 0)
     fail("localisation only", "there is no map to localise in (load one with --load-map)");
   tracker_.set_localisation_only(true);
+  tracker_.map_mutex().assert_held();  // the tracker's map is map_
   tracker_.relocalise_in_map();
 }
 
 std::vector<StampedPose> System::trajectory() const {
-  std::lock_guard<std::mutex> lock(map_.mutex());
+  MutexLock lock(map_.mutex());
   const int main = main_map(tracker_.trajectory());
   std::vector<StampedPose> out;
   for (const TrajectoryEntry& e : tracker_.trajectory()) {
@@ -230,7 +233,7 @@ std::vector<StampedPose> System::trajectory() const {
 }
 
 std::vector<StampedFrameState> System::frame_states() const {
-  std::lock_guard<std::mutex> lock(map_.mutex());
+  MutexLock lock(map_.mutex());
   const std::map<int, int> numbers = map_numbers(tracker_.trajectory());
   std::vector<StampedFrameState> out;
   for (const TrajectoryEntry& e : tracker_.trajectory()) {
@@ -247,7 +250,7 @@ std::vector<StampedFrameState> System::frame_states() const {
 }
 
 std::vector<AtlasPose> System::atlas_trajectory() const {
-  std::lock_guard<std::mutex> lock(map_.mutex());
+  MutexLock lock(map_.mutex());
   const std::map<int, int> numbers = map_numbers(tracker_.trajectory());
   std::vector<AtlasPose> out;
   for (const TrajectoryEntry& e : tracker_.trajectory()) {
@@ -260,7 +263,7 @@ std::vector<AtlasPose> System::atlas_trajectory() const {
 }
 
 std::vector<StampedPose> System::keyframe_trajectory() const {
-  std::lock_guard<std::mutex> lock(map_.mutex());
+  MutexLock lock(map_.mutex());
   const int main = main_map(tracker_.trajectory());
   std::vector<StampedPose> out;
   for (KeyFrame* kf : map_.keyframes())
@@ -269,17 +272,17 @@ std::vector<StampedPose> System::keyframe_trajectory() const {
 }
 
 int System::maps() const {
-  std::lock_guard<std::mutex> lock(map_.mutex());
+  MutexLock lock(map_.mutex());
   return static_cast<int>(map_.map_ids().size());
 }
 
 size_t System::n_keyframes() const {
-  std::lock_guard<std::mutex> lock(map_.mutex());
+  MutexLock lock(map_.mutex());
   return map_.n_keyframes();
 }
 
 size_t System::n_map_points() const {
-  std::lock_guard<std::mutex> lock(map_.mutex());
+  MutexLock lock(map_.mutex());
   return map_.n_map_points();
 }
 

@@ -34,7 +34,7 @@ Tracker::Tracker(Map& map, KeyFrameSink& mapper, const TrackerParams& params,
     : map_(map), mapper_(mapper), params_(params), places_(places) {}
 
 TrackingState Tracker::track(Frame frame, TrackingStats* stats) {
-  std::lock_guard<std::mutex> lock(map_.mutex());
+  MutexLock lock(map_.mutex());
   TrackingStats local;
   current_stats_ = &local;
   // Local BA and loop closing move keyframes between frames: the last

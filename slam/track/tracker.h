@@ -7,7 +7,8 @@
 // Threads and locks: a Tracker is driven by one thread (the caller of
 // System::track), which owns every member below; no other thread touches
 // them. Keyframes and map points are shared with local mapping and guarded
-// by map.mutex(): track() holds it for the whole frame, reset() and every
+// by map.mutex(): track() holds it for the whole frame (every tracking step
+// below is DEPOT_REQUIRES it, checked by clang), reset() and every
 // reader of map state (trajectory resolution, wants_reset's keyframe count)
 // must be called with it held or read a value computed under it. The
 // mapper (KeyFrameSink) is called with the map lock held; its methods only
@@ -113,7 +114,7 @@ class Tracker {
 
   // Tracks a frame whose features are extracted (and filtered). Takes the map
   // lock for the whole frame.
-  TrackingState track(Frame frame, TrackingStats* stats = nullptr);
+  TrackingState track(Frame frame, TrackingStats* stats = nullptr) DEPOT_EXCLUDES(map_.mutex());
 
   TrackingState state() const { return state_; }
   // True when the last frame was lost while the map was still tiny, or
@@ -126,18 +127,21 @@ class Tracker {
   // Back to NOT_INITIALIZED; frames tracked so far leave the trajectory
   // (they belong to the abandoned map: state ABANDONED). The caller holds
   // the map lock and clears the map.
-  void reset();
+  void reset() DEPOT_REQUIRES(map_.mutex());
   // The atlas's reset: only the active map is forgotten (Map::discard_map,
   // its keyframes leave `places`), its frames become ABANDONED and a new
   // map begins; other maps keep theirs, and while there are any the next
   // frame relocalises in them before it starts the new map. The caller
   // holds the map lock and has cleared local mapping's and loop closing's
   // queues.
-  void discard_active_map();
+  void discard_active_map() DEPOT_REQUIRES(map_.mutex());
   // The next frame relocalises against the map as it is (a loaded map),
   // anywhere in it, instead of starting one; the atlas starts no new map
   // before one has. The caller holds the map lock.
-  void relocalise_in_map();
+  void relocalise_in_map() DEPOT_REQUIRES(map_.mutex());
+  // The map lock as the tracker names it (the Map it was built on), for a
+  // caller that holds that Map's lock: map_mutex().assert_held().
+  Mutex& map_mutex() const DEPOT_RETURN_CAPABILITY(map_.mutex()) { return map_.mutex(); }
   // Localisation only: no keyframes or points are made and a lost camera
   // never resets the map.
   void set_localisation_only(bool on) { localisation_only_ = on; }
@@ -151,31 +155,31 @@ class Tracker {
 
  private:
   // Enough keypoints, and enough with depth, to start a map on.
-  bool can_initialize(const Frame& frame) const;
-  bool initialize(Frame& frame);
+  bool can_initialize(const Frame& frame) const DEPOT_REQUIRES(map_.mutex());
+  bool initialize(Frame& frame) DEPOT_REQUIRES(map_.mutex());
   // Points of the last frame that local mapping fused into others are
   // replaced by their survivors (ORB-SLAM2's CheckReplacedInLastFrame).
   // Back to NOT_INITIALIZED with no last frame, velocity or local map.
-  void forget_motion();
+  void forget_motion() DEPOT_REQUIRES(map_.mutex());
   // The frames tracked in map `map_id` (every map when -1) lose their pose:
   // ABANDONED.
-  void abandon_frames(int map_id);
-  void follow_replaced_points_in_last_frame();
-  bool track_motion_model(Frame& frame, int& matches);
-  bool track_reference_keyframe(Frame& frame, int& matches);
+  void abandon_frames(int map_id) DEPOT_REQUIRES(map_.mutex());
+  void follow_replaced_points_in_last_frame() DEPOT_REQUIRES(map_.mutex());
+  bool track_motion_model(Frame& frame, int& matches) DEPOT_REQUIRES(map_.mutex());
+  bool track_reference_keyframe(Frame& frame, int& matches) DEPOT_REQUIRES(map_.mutex());
   // Relocalises in any map of the atlas but `skip_map`.
-  bool relocalize(Frame& frame, int& matches, int skip_map = -1);
+  bool relocalize(Frame& frame, int& matches, int skip_map = -1) DEPOT_REQUIRES(map_.mutex());
   // While the active map is young (fewer than young_map_keyframes), a
   // tracked frame that also relocalises in an older map merges the young
   // map into it (the frame's two poses give the transform); a camera lost
   // for a moment so rejoins the map it left.
-  void rejoin_older_map(Frame& frame);
-  bool track_local_map(Frame& frame, int& inliers, int& n_local);
-  void update_local_map(Frame& frame);
-  bool need_keyframe(const Frame& frame, int inliers) const;
-  void create_keyframe(Frame& frame);
-  int discard_outliers(Frame& frame);
-  int timed_optimize(Frame& frame);
+  void rejoin_older_map(Frame& frame) DEPOT_REQUIRES(map_.mutex());
+  bool track_local_map(Frame& frame, int& inliers, int& n_local) DEPOT_REQUIRES(map_.mutex());
+  void update_local_map(Frame& frame) DEPOT_REQUIRES(map_.mutex());
+  bool need_keyframe(const Frame& frame, int inliers) const DEPOT_REQUIRES(map_.mutex());
+  void create_keyframe(Frame& frame) DEPOT_REQUIRES(map_.mutex());
+  int discard_outliers(Frame& frame) DEPOT_REQUIRES(map_.mutex());
+  int timed_optimize(Frame& frame) DEPOT_REQUIRES(map_.mutex());
 
   TrackingStats* current_stats_ = nullptr;
   Map& map_;

@@ -213,7 +213,7 @@ TEST_F(TrackerTest, ResetAbandonsTheFramesOfTheOldMap) {
   track_covered();
   ASSERT_TRUE(tracker_.wants_reset());
   {
-    std::lock_guard<std::mutex> lock(map_.mutex());
+    MutexLock lock(map_.mutex());
     map_.clear();
     tracker_.reset();
   }
@@ -233,7 +233,7 @@ TEST_F(TrackerTest, TheLastFrameFollowsPointsThatMappingFused) {
   // it finds duplicates), between two frames.
   size_t fused = 0;
   {
-    std::lock_guard<std::mutex> lock(map_.mutex());
+    MutexLock lock(map_.mutex());
     for (MapPoint* mp : tracker_.last_frame().map_points) {
       if (!mp || mp->bad) continue;
       MapPoint* twin = map_.create_map_point(mp->position, mp->reference);

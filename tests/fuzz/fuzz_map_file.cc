@@ -55,7 +55,7 @@ void write_seed(const std::string& path) {
   }
   for (KeyFrame* kf : kfs) kf->update_connections();
   kfs[1]->loop_edges.insert(kfs[0]);
-  std::lock_guard<std::mutex> lock(map.mutex());
+  MutexLock lock(map.mutex());
   save_map_file(map, camera, levels, 0x1234abcd, path);
 }
 
@@ -74,14 +74,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   depot::fuzz::expect_clean(path, [&] {
     ScaleLevels levels;
     Map map;
-    std::lock_guard<std::mutex> lock(map.mutex());
+    MutexLock lock(map.mutex());
     info = load_map_file_as_saved(path, levels, map);
   });
   if (info.levels > 0) {
     const ScaleLevels levels = ScaleLevels::make(info.levels, info.scale_factor);
     depot::fuzz::expect_clean(path, [&] {
       Map map;
-      std::lock_guard<std::mutex> lock(map.mutex());
+      MutexLock lock(map.mutex());
       load_map_file(path, info.camera, levels, info.vocabulary, map);
     });
   }

@@ -23,7 +23,7 @@ struct LoadedMap {
 // The map as its file describes it (its own camera, pyramid and vocabulary).
 std::unique_ptr<LoadedMap> load(const std::string& path) {
   auto loaded = std::make_unique<LoadedMap>();
-  std::lock_guard<std::mutex> lock(loaded->map.mutex());
+  MutexLock lock(loaded->map.mutex());
   loaded->info = slam::load_map_file_as_saved(path, loaded->levels, loaded->map);
   return loaded;
 }
@@ -32,7 +32,10 @@ void info(const std::string& path) {
   const auto m = load(path);
   const slam::MapFileInfo& i = m->info;
   size_t observations = 0;
-  for (const slam::MapPoint* mp : m->map.map_points()) observations += mp->observations.size();
+  {
+    MutexLock lock(m->map.mutex());
+    for (const slam::MapPoint* mp : m->map.map_points()) observations += mp->observations.size();
+  }
   const slam::PinholeCamera& c = i.camera;
   const std::string lens = c.distorted() ? " lens " + describe_lens(c.lens) : "";
   std::printf(
@@ -49,7 +52,7 @@ void export_points(const std::string& path, const std::string& output) {
   const auto m = load(path);
   std::vector<slam::PlyPoint> cloud;
   {
-    std::lock_guard<std::mutex> lock(m->map.mutex());
+    MutexLock lock(m->map.mutex());
     cloud = slam::map_point_cloud(m->map);
   }
   slam::write_ply(output, cloud, "observations");
