@@ -5,6 +5,7 @@ find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs video dnn featu
 find_package(yaml-cpp REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(CLI11 REQUIRED)
+find_package(fmt 9 REQUIRED)  # text formatting (Debian libfmt-dev)
 find_package(PNG REQUIRED)
 find_package(assimp 5.2 REQUIRED)  # model files (glTF/GLB, FBX, OBJ) for sim/assets
 

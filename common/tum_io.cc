@@ -1,7 +1,8 @@
 #include "common/tum_io.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -92,11 +93,9 @@ std::vector<StampedPose> read_tum_trajectory(const std::string& path) {
     prev = v[0];
     Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
     if (!(std::abs(q.norm() - 1.0) <= kQuaternionNormTolerance)) {
-      char norm[32];
-      std::snprintf(norm, sizeof(norm), "%.6g", q.norm());
-      fail(where(path, row), std::string("quaternion is not unit length (norm ") + norm +
-                                 ", allowed 1 +- " + std::to_string(kQuaternionNormTolerance) +
-                                 ")");
+      fail(where(path, row), "quaternion is not unit length (norm " +
+                                 fmt::format("{:.6g}", q.norm()) + ", allowed 1 +- " +
+                                 std::to_string(kQuaternionNormTolerance) + ")");
     }
     out.push_back({v[0], make_pose(q, Eigen::Vector3d(v[1], v[2], v[3]))});
   }
@@ -149,10 +148,8 @@ std::string format_tum_pose(const StampedPose& p) {
   q.normalize();
   if (q.w() < 0) q.coeffs() *= -1.0;  // one canonical sign, for stable files
   const Eigen::Vector3d& t = p.pose.translation();
-  char buf[256];
-  std::snprintf(buf, sizeof(buf), "%.6f %.9f %.9f %.9f %.9f %.9f %.9f %.9f", p.timestamp, t.x(),
-                t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
-  return buf;
+  return fmt::format("{:.6f} {:.9f} {:.9f} {:.9f} {:.9f} {:.9f} {:.9f} {:.9f}", p.timestamp, t.x(),
+                     t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
 }
 
 void write_text_file_atomic(const std::string& path, const std::string& text) {

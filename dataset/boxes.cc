@@ -1,7 +1,8 @@
 #include "dataset/boxes.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -56,11 +57,8 @@ std::string boxes_header(const std::string& scenario_name) {
 }
 
 std::string format_box(const BoxRecord& b) {
-  char buf[256];
-  std::snprintf(buf, sizeof(buf), "%s %d %s %d %d %d %d %d %d\n",
-                format_timestamp(b.timestamp).c_str(), b.id, b.class_name.c_str(), b.x1, b.y1, b.x2,
-                b.y2, b.visible_pixels, b.moving ? 1 : 0);
-  return buf;
+  return fmt::format("{} {} {} {} {} {} {} {} {}\n", format_timestamp(b.timestamp), b.id,
+                     b.class_name, b.x1, b.y1, b.x2, b.y2, b.visible_pixels, b.moving ? 1 : 0);
 }
 
 void write_boxes(const std::string& dataset_dir, const std::string& scenario_name,

@@ -1,6 +1,7 @@
 #include "dataset/dataset_files.h"
 
-#include <cstdio>
+#include <fmt/format.h>
+
 #include <filesystem>
 
 namespace depot::dataset {
@@ -10,9 +11,7 @@ std::string dataset_file(const std::string& dataset_dir, const std::string& name
 }
 
 std::string format_timestamp(double t) {
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.6f", t);
-  return buf;
+  return fmt::format("{:.6f}", t);
 }
 
 std::string file_header_line(const std::string& scenario_name) {

@@ -1,9 +1,10 @@
 #include "eval/colormap.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 
 namespace depot::eval {
 namespace {
@@ -27,9 +28,7 @@ constexpr std::array<Rgb, 11> kViridis = {{{68, 1, 84},
 
 std::string hex(const Rgb& c) {
   auto byte = [](double v) { return static_cast<int>(std::lround(std::clamp(v, 0.0, 255.0))); };
-  char buf[8];
-  std::snprintf(buf, sizeof(buf), "#%02x%02x%02x", byte(c.r), byte(c.g), byte(c.b));
-  return buf;
+  return fmt::format("#{:02x}{:02x}{:02x}", byte(c.r), byte(c.g), byte(c.b));
 }
 
 }  // namespace

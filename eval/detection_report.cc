@@ -1,8 +1,9 @@
 #include "eval/detection_report.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <set>
 
@@ -23,9 +24,7 @@ struct Table {
 
 std::string fixed(double v, int digits = 2) {
   if (!std::isfinite(v)) return "-";
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.*f", digits, v);
-  return buf;
+  return fmt::format("{:.{}f}", v, digits);
 }
 
 // "0.62 (31/50)", or "-" when there is nothing to count.
@@ -152,13 +151,11 @@ Table confusion_table(const DetectionScore& s, bool clear_only) {
 
 std::string summary_line(const DetectionSide& side) {
   const DetectionScore& s = *side.score;
-  char buf[512];
-  std::snprintf(buf, sizeof(buf),
-                "%ld frames; %ld false positives (%s per frame); %ld detections of unscored "
-                "labels; detector %s, median %.1f ms per frame",
-                s.frames(), s.false_positives(), fixed(s.false_positives_per_frame(), 3).c_str(),
-                s.other_detections(), side.detector.c_str(), side.median_ms);
-  return buf;
+  return fmt::format(
+      "{} frames; {} false positives ({} per frame); {} detections of unscored labels; detector "
+      "{}, median {:.1f} ms per frame",
+      s.frames(), s.false_positives(), fixed(s.false_positives_per_frame(), 3),
+      s.other_detections(), side.detector, side.median_ms);
 }
 
 std::string text(const Table& t) {

@@ -1,8 +1,9 @@
 #include "eval/keypoint_file.h"
 
+#include <fmt/format.h>
+
 #include <cerrno>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -17,9 +18,7 @@ const char* const kHeader =
 
 // Timestamps are matched as the dataset's lists write them: to 1 us.
 std::string stamp_key(double t) {
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.6f", t);
-  return buf;
+  return fmt::format("{:.6f}", t);
 }
 
 std::string trim(const std::string& s) {
@@ -142,11 +141,9 @@ void write_keypoint_header(std::ostream& out) {
 }
 
 void write_keypoint_row(std::ostream& out, const WrittenKeypoint& r) {
-  char line[192];
-  std::snprintf(line, sizeof(line), "%zu,%.6f,%.9g,%.9g,%d,%c,%d,%.4f,", r.frame, r.timestamp,
-                static_cast<double>(r.keypoint.pt.x), static_cast<double>(r.keypoint.pt.y),
-                r.keypoint.octave, r.set, r.kept ? 1 : 0, static_cast<double>(r.depth_m));
-  out << line;
+  out << fmt::format("{},{:.6f},{:.9g},{:.9g},{},{},{},{:.4f},", r.frame, r.timestamp,
+                     static_cast<double>(r.keypoint.pt.x), static_cast<double>(r.keypoint.pt.y),
+                     r.keypoint.octave, r.set, r.kept ? 1 : 0, static_cast<double>(r.depth_m));
   if (r.truth)
     out << (r.truth->on_moving ? 1 : 0) << ',' << (r.truth->boundary ? 1 : 0) << ','
         << r.truth->instance;

@@ -1,6 +1,6 @@
 #include "eval/matched_trajectories.h"
 
-#include <cstdio>
+#include <fmt/format.h>
 
 #include "common/error.h"
 
@@ -15,15 +15,11 @@ std::vector<double> stamps_of(const std::vector<StampedPose>& poses) {
 }
 
 std::string time_range(const std::vector<StampedPose>& poses) {
-  char buf[96];
-  std::snprintf(buf, sizeof(buf), "%.3f..%.3f s", poses.front().timestamp, poses.back().timestamp);
-  return buf;
+  return fmt::format("{:.3f}..{:.3f} s", poses.front().timestamp, poses.back().timestamp);
 }
 
 std::string seconds(double s) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%g s", s);
-  return buf;
+  return fmt::format("{:g} s", s);
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
 #include "eval/plot_axes.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 namespace depot::eval {
 namespace {
@@ -49,9 +50,7 @@ std::vector<double> ticks_within(const AxisRange& range, double step) {
 
 std::string tick_label(double value, double step) {
   const int decimals = std::max(0, static_cast<int>(-std::floor(std::log10(step) + 1e-9)));
-  char buf[48];
-  std::snprintf(buf, sizeof(buf), "%.*f", decimals, value);
-  std::string s = buf;
+  std::string s = fmt::format("{:.{}f}", value, decimals);
   if (s.find_first_not_of("-0.") == std::string::npos && s[0] == '-') s.erase(0, 1);  // no "-0"
   return s;
 }

@@ -1,7 +1,8 @@
 #include "eval/result_plots.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
-#include <cstdio>
 
 #include "eval/alignment.h"
 
@@ -16,10 +17,8 @@ std::vector<Eigen::Vector3d> positions_of(const std::vector<Pose>& poses) {
 }
 
 std::string summary(const char* what, const ErrorStatistics& s) {
-  char buf[200];
-  std::snprintf(buf, sizeof(buf), "%s: rmse %.4f, mean %.4f, median %.4f, std %.4f, max %.4f", what,
-                s.rmse, s.mean, s.median, s.std, s.max);
-  return buf;
+  return fmt::format("{}: rmse {:.4f}, mean {:.4f}, median {:.4f}, std {:.4f}, max {:.4f}", what,
+                     s.rmse, s.mean, s.median, s.std, s.max);
 }
 
 }  // namespace
@@ -41,14 +40,13 @@ TrajectoryPlot ate_plot(const MatchedTrajectories& matched, const AteResult& ate
 
 TrajectoryPlot rpe_plot(const MatchedTrajectories& matched, const RpeResult& rpe) {
   TrajectoryPlot plot;
-  char delta[64];
-  std::snprintf(delta, sizeof(delta), "delta %g %s", rpe.selection.delta,
-                to_string(rpe.selection.unit).c_str());
+  const std::string delta =
+      fmt::format("delta {:g} {}", rpe.selection.delta, to_string(rpe.selection.unit));
   plot.title = "RPE: " + matched.estimate_name + " vs " + matched.reference_name;
-  char rotation[96];
-  std::snprintf(rotation, sizeof(rotation), "rotation (deg): rmse %.4f, std %.4f",
-                rpe.rotation_statistics.rmse, rpe.rotation_statistics.std);
-  plot.subtitle = std::string(delta) + ", " + std::to_string(rpe.pairs.size()) + " pairs | " +
+  const std::string rotation =
+      fmt::format("rotation (deg): rmse {:.4f}, std {:.4f}", rpe.rotation_statistics.rmse,
+                  rpe.rotation_statistics.std);
+  plot.subtitle = delta + ", " + std::to_string(rpe.pairs.size()) + " pairs | " +
                   summary("translation (m)", rpe.translation_statistics) + " | " + rotation;
 
   plot.reference = positions_of(matched.reference);

@@ -1,7 +1,8 @@
 #include "eval/rpe.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
-#include <cstdio>
 
 #include "common/error.h"
 
@@ -9,9 +10,7 @@ namespace depot::eval {
 namespace {
 
 std::string delta_text(const PairSelection& selection) {
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%g %s", selection.delta, to_string(selection.unit).c_str());
-  return buf;
+  return fmt::format("{:g} {}", selection.delta, to_string(selection.unit));
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
 #include "eval/series_plot.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 
 #include "common/error.h"
@@ -22,12 +23,8 @@ bool parse_number(const std::string& text, double* value) {
 }
 
 std::string log_tick_label(int exponent) {
-  char buf[32];
-  if (exponent >= 0)
-    std::snprintf(buf, sizeof(buf), "%.0f", std::pow(10.0, exponent));
-  else
-    std::snprintf(buf, sizeof(buf), "%.*f", -exponent, std::pow(10.0, exponent));
-  return buf;
+  if (exponent >= 0) return fmt::format("{:.0f}", std::pow(10.0, exponent));
+  return fmt::format("{:.{}f}", std::pow(10.0, exponent), -exponent);
 }
 
 void draw_marker(SvgDocument& svg, Point2 at, const PlotSeries& series) {

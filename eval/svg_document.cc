@@ -1,15 +1,13 @@
 #include "eval/svg_document.h"
 
-#include <cstdio>
+#include <fmt/format.h>
 
 namespace depot::eval {
 namespace {
 
 // Coordinates with two decimals: sub-pixel exact, compact files.
 std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.2f", v);
-  return buf;
+  return fmt::format("{:.2f}", v);
 }
 
 std::string stroke_attributes(const Stroke& s) {

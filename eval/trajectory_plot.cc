@@ -1,5 +1,7 @@
 #include "eval/trajectory_plot.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -212,9 +214,7 @@ void draw_series(SvgDocument& svg, const ErrorSeries& series, double time_origin
     const double py = frame.to_pixel(0.0, m.value).y;
     svg.line({kLeft, py}, {kLeft + kSeriesWidth, py}, {m.colour, 1.4, m.dash});
     svg.line({legend_x, top - 12.0}, {legend_x + 24.0, top - 12.0}, {m.colour, 1.8, m.dash});
-    char value[48];
-    std::snprintf(value, sizeof(value), "%s %.4g", m.name, m.value);
-    svg.text({legend_x + 28.0, top - 8.0}, value, legend_text);
+    svg.text({legend_x + 28.0, top - 8.0}, fmt::format("{} {:.4g}", m.name, m.value), legend_text);
     legend_x += 115.0;
   }
   frame.draw_axes(svg, x_step, y_step, {"time (s)", series.name + unit, ""});

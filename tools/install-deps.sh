@@ -7,7 +7,8 @@
 # (scenes/systems/open3d_odometry), a dense RGB-D odometry baseline.
 # slurm-wlm and munge run the local single-node cluster of .ci/run's cluster
 # step (tools/slurm/local-cluster.sh); clang and libclang-rt-14-dev build the
-# libFuzzer targets (tests/fuzz, `fuzz` label); ccache speeds up rebuilds.
+# libFuzzer targets (tests/fuzz, `fuzz` label); ccache speeds up rebuilds;
+# libfmt-dev formats text (numbers into tables, files and messages).
 set -euo pipefail
 
 packages=(
@@ -16,7 +17,7 @@ packages=(
   libgl-dev libopengl-dev libosmesa6-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
   libopencv-dev libpng-dev zlib1g-dev libeigen3-dev libceres-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
+  libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   chromium opencv-doc
   python3-open3d
   slurm-wlm munge

@@ -1,7 +1,8 @@
 #include "sim/assets/mujoco_mesh.h"
 
+#include <fmt/format.h>
+
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
@@ -22,9 +23,7 @@ void append(std::string& out, const T* data, size_t count) {
 }
 
 std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.6g", v);
-  return buf;
+  return fmt::format("{:.6g}", v);
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 #include "sim/dataset/boxes.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
-#include <cstdio>
 
 namespace depot::sim {
 
@@ -33,11 +34,9 @@ std::vector<InstanceBox> instance_boxes(const cv::Mat& instance, int min_pixels)
 }
 
 std::string yolo_line(int yolo_class, const InstanceBox& b, int width, int height) {
-  char buf[128];
-  std::snprintf(buf, sizeof(buf), "%d %.6f %.6f %.6f %.6f", yolo_class, 0.5 * (b.x1 + b.x2) / width,
-                0.5 * (b.y1 + b.y2) / height, static_cast<double>(b.x2 - b.x1) / width,
-                static_cast<double>(b.y2 - b.y1) / height);
-  return buf;
+  return fmt::format("{} {:.6f} {:.6f} {:.6f} {:.6f}", yolo_class, 0.5 * (b.x1 + b.x2) / width,
+                     0.5 * (b.y1 + b.y2) / height, static_cast<double>(b.x2 - b.x1) / width,
+                     static_cast<double>(b.y2 - b.y1) / height);
 }
 
 }  // namespace depot::sim

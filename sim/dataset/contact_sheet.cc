@@ -1,5 +1,7 @@
 #include "sim/dataset/contact_sheet.h"
 
+#include <fmt/format.h>
+
 #include <cctype>
 #include <filesystem>
 
@@ -81,8 +83,7 @@ void write_contact_sheet(const std::string& dataset, const std::string& output,
       double s = static_cast<double>(options.thumb_width) / t.cols;
       cv::resize(t, t, cv::Size(), s, s, cv::INTER_AREA);
     }
-    char caption[128];
-    std::snprintf(caption, sizeof(caption), "t=%.3f  frame %zu", assoc[i].rgb_timestamp, i);
+    const std::string caption = fmt::format("t={:.3f}  frame {}", assoc[i].rgb_timestamp, i);
     cv::putText(tiles[0], caption, cv::Point(6, 18), cv::FONT_HERSHEY_SIMPLEX, 0.5,
                 cv::Scalar(255, 255, 255), 2);
     cv::putText(tiles[0], caption, cv::Point(6, 18), cv::FONT_HERSHEY_SIMPLEX, 0.5,

@@ -1,16 +1,15 @@
 #include "sim/scenario/camera_cover.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
-#include <cstdio>
 
 namespace depot::sim {
 
 namespace {
 
 std::string seconds(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%g", v);
-  return buf;
+  return fmt::format("{:g}", v);
 }
 
 std::string describe(size_t index, const CoverInterval& c) {

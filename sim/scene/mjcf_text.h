@@ -1,8 +1,9 @@
 #pragma once
 // Numbers, vectors and rotations as MJCF attribute text, shared by the scene
 // builder and the mesh props.
+#include <fmt/format.h>
+
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -11,9 +12,7 @@ namespace depot::sim {
 
 // Six significant digits; |v| < 1e-12 is written 0 (no "-0" or 1e-17 noise).
 inline std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.6g", std::abs(v) < 1e-12 ? 0.0 : v);
-  return buf;
+  return fmt::format("{:.6g}", std::abs(v) < 1e-12 ? 0.0 : v);
 }
 
 inline std::string vec(const Eigen::Vector3d& v) {

@@ -1,7 +1,8 @@
 #include "sim/scene/scene_model.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
 #include <opencv2/imgcodecs.hpp>
@@ -156,11 +157,9 @@ void check_pusher_start(const ActorSpec& a, const Instance& target,
   if (!overlaps(0.0)) return;
   double back = 0.05;
   while (back < 3.0 && overlaps(back)) back += 0.05;
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.2f", back);
   fail(where, "actor '" + a.name + "' starts with its hands inside '" + target.name +
-                  "' (at its largest size): start its path at least " + text +
-                  " m further behind it");
+                  "' (at its largest size): start its path at least " +
+                  fmt::format("{:.2f}", back) + " m further behind it");
 }
 
 // Skinned variants of the asset catalogue (people and animals), each loaded

@@ -1,6 +1,8 @@
 #include "sim/scene/skinned_actor_xml.h"
 
-#include <cstdio>
+#include <fmt/format.h>
+
+#include <iterator>
 #include <sstream>
 
 #include "sim/actors/bone_poses.h"
@@ -12,9 +14,7 @@ namespace {
 
 // Compact numbers: a person's skins are ~18k vertices, written as text.
 void put(std::string& out, double v) {
-  char buf[32];
-  const int n = std::snprintf(buf, sizeof(buf), "%.6g ", std::abs(v) < 1e-12 ? 0.0 : v);
-  out.append(buf, static_cast<size_t>(n));
+  fmt::format_to(std::back_inserter(out), "{:.6g} ", std::abs(v) < 1e-12 ? 0.0 : v);
 }
 
 std::string trimmed(std::string s) {

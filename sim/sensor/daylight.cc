@@ -1,8 +1,9 @@
 #include "sim/sensor/daylight.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "common/error.h"
 #include "sim/sensor/light.h"
@@ -19,9 +20,7 @@ constexpr double kBehindWall = 0.05;
 constexpr double kAboveFloor = 0.01;
 
 std::string metres(double v) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.2f m", v);
-  return text;
+  return fmt::format("{:.2f} m", v);
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "sim/world/camera_clearance.h"
 
+#include <fmt/format.h>
+
 #include <cstdio>
 
 #include "common/error.h"
@@ -8,9 +10,7 @@ namespace depot::sim {
 namespace {
 
 std::string metres(double d) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.2f m", d);
-  return buf;
+  return fmt::format("{:.2f} m", d);
 }
 
 std::string frames_text(int first, int last) {

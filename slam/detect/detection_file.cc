@@ -1,10 +1,11 @@
 #include "slam/detect/detection_file.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -52,11 +53,10 @@ T parse(const std::string& where, const std::string& field, const char* what) {
 void write_detections_file(const std::string& path, const std::vector<DetectionFrame>& frames) {
   std::string text =
       "# detections: timestamp class_name confidence x1 y1 x2 y2 (pixels, x2 = x + width)\n";
-  char stamp[64];
   for (const DetectionFrame& f : frames) {
     if (!std::isfinite(f.timestamp) || f.timestamp < 0)
       fail(path, "frame timestamp " + std::to_string(f.timestamp) + " is not a valid time");
-    std::snprintf(stamp, sizeof(stamp), "%.6f", f.timestamp);
+    const std::string stamp = fmt::format("{:.6f}", f.timestamp);
     for (const Detection& d : f.detections) {
       const std::string at = path + ": frame " + stamp;
       if (d.class_name.empty() || has_space(d.class_name))
@@ -70,8 +70,8 @@ void write_detections_file(const std::string& path, const std::vector<DetectionF
         fail(at, "box of '" + d.class_name + "' has a negative size");
       if (d.confidence < 0 || d.confidence > 1)
         fail(at, "confidence of '" + d.class_name + "' is outside [0, 1]");
-      text += std::string(stamp) + " " + d.class_name + " " + shortest(d.confidence) + " " +
-              shortest(b.x) + " " + shortest(b.y) + " " + shortest(x2) + " " + shortest(y2) + "\n";
+      text += stamp + " " + d.class_name + " " + shortest(d.confidence) + " " + shortest(b.x) +
+              " " + shortest(b.y) + " " + shortest(x2) + " " + shortest(y2) + "\n";
     }
   }
   write_text_file_atomic(path, text);

@@ -10,6 +10,8 @@
 //
 // Extra YAML files (e.g. scenes/detectors/yolov5s.yaml once its model is in
 // place) are benchmarked too. The thread count is OpenCV's default.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -102,12 +104,9 @@ int main(int argc, char** argv) {
       const double ms = median_ms(runs, [&] { dets = detector->detect(frame, 0.0, 0); });
       std::string found;
       for (const Detection& d : dets)
-        if (d.class_name == "person") {
-          char buf[64];
-          std::snprintf(buf, sizeof buf, "%sperson %.2f", found.empty() ? "" : ", ",
-                        static_cast<double>(d.confidence));
-          found += buf;
-        }
+        if (d.class_name == "person")
+          found += fmt::format("{}person {:.2f}", found.empty() ? "" : ", ",
+                               static_cast<double>(d.confidence));
       rows.push_back({std::filesystem::path(yaml).stem().string() + " (" + config.type + ")", ms,
                       found.empty() ? "no person" : found, &yaml == &yamls.front()});
     } catch (const depot::Error& e) {

@@ -1,8 +1,9 @@
 #include "slam/detect/sim_detector.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 
 #include "common/error.h"
@@ -230,12 +231,9 @@ std::vector<Detection> SimDetector::detect(const cv::Mat& bgr, double timestamp,
                    " but the dataset's frames are " + std::to_string(data_.image_size.width) + "x" +
                    std::to_string(data_.image_size.height));
   const long frame = find_frame(timestamp);
-  if (frame < 0) {
-    char stamp[64];
-    std::snprintf(stamp, sizeof(stamp), "%.6f", timestamp);
+  if (frame < 0)
     fail((std::filesystem::path(dir_) / "rgb.txt").string(),
-         std::string("no frame at timestamp ") + stamp);
-  }
+         "no frame at timestamp " + fmt::format("{:.6f}", timestamp));
   const long lagged = frame - config_.latency_frames;
   if (lagged < 0) return {};
   return detect_frame(static_cast<size_t>(lagged));

@@ -1,7 +1,8 @@
 #include "slam/io/frame_states_file.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -38,14 +39,11 @@ std::string format_frame_states(const std::vector<StampedFrameState>& states,
       "# timestamp state [map] (tracked = NEW_MAP, OK, RELOCALIZED: in the trajectory; untracked "
       "= NOT_INITIALIZED, LOST, ABANDONED, OTHER_MAP; see slam/track/tracking_state.h; map: the "
       "atlas map of a frame with a pose, 0 = the trajectory's)\n";
-  char line[80];
   for (const StampedFrameState& s : states) {
     if (s.map >= 0)
-      std::snprintf(line, sizeof(line), "%.6f %s %d\n", s.timestamp, frame_state_name(s.state),
-                    s.map);
+      text += fmt::format("{:.6f} {} {}\n", s.timestamp, frame_state_name(s.state), s.map);
     else
-      std::snprintf(line, sizeof(line), "%.6f %s\n", s.timestamp, frame_state_name(s.state));
-    text += line;
+      text += fmt::format("{:.6f} {}\n", s.timestamp, frame_state_name(s.state));
   }
   return text;
 }

@@ -1,8 +1,9 @@
 #include "slam/io/ply_file.h"
 
+#include <fmt/format.h>
+
 #include <cerrno>
 #include <cstdint>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -80,11 +81,9 @@ PlyCheck check_ply_file(const std::string& path) {
     // other control byte inside one once sent it into an endless loop on a
     // header this check had passed (found by fuzz_ply_file).
     for (const char c : line)
-      if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f) {
-        char hex[8];
-        std::snprintf(hex, sizeof(hex), "0x%02x", static_cast<unsigned char>(c));
-        header_fail(std::string("holds a control byte (") + hex + "); a PLY header is text");
-      }
+      if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f)
+        header_fail(fmt::format("holds a control byte (0x{:02x}); a PLY header is text",
+                                static_cast<unsigned char>(c)));
     std::istringstream words(line);
     std::string keyword;
     words >> keyword;

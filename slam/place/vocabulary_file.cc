@@ -1,6 +1,7 @@
 #include "slam/place/vocabulary_file.h"
 
-#include <cstdio>
+#include <fmt/format.h>
+
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -116,9 +117,7 @@ uint32_t vocabulary_identity(const Vocabulary& vocabulary) {
 }
 
 std::string format_vocabulary_identity(uint32_t identity) {
-  char text[9];
-  std::snprintf(text, sizeof(text), "%08x", identity);
-  return text;
+  return fmt::format("{:08x}", identity);
 }
 
 std::string default_vocabulary_path() {

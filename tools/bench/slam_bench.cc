@@ -5,6 +5,8 @@
 // thread running ahead, against the same run without, at --rate Hz input.
 #include <unistd.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -251,13 +253,10 @@ int main(int argc, char** argv) {
         return depot::runner::run_sequence(options);
       };
       const depot::runner::RunSummary off = run_at_rate(false), on = run_at_rate(true);
-      char input[64];
-      if (rate_hz > 0)
-        std::snprintf(input, sizeof(input), "%g Hz input", rate_hz);
-      else
-        std::snprintf(input, sizeof(input), "input as fast as possible");
+      const std::string input =
+          rate_hz > 0 ? fmt::format("{:g} Hz input", rate_hz) : "input as fast as possible";
       std::printf("  mode %s, %s, detection thread running ahead vs not (same run):\n",
-                  mode.c_str(), input);
+                  mode.c_str(), input.c_str());
       std::printf("  %-34s %10s %10s %12s\n", "median ms", "without", "with", "with/without");
       auto compare = [](const char* name, double without, double with) {
         std::printf("  %-34s %10.2f %10.2f %11.2fx\n", name, without, with,

@@ -1,6 +1,8 @@
 // `depot eval detector|segmenter`: a detector or a person segmenter scored
 // against a simulated dataset's ground truth and/or hand-labelled real
 // images. The work is in tools/perception (running) and eval/ (scoring, report).
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -139,9 +141,7 @@ void run_detector_eval(DetectorArgs& a) {
 
 std::string rate_text(const eval::Tally& t) {
   if (t.total == 0) return "-";
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.2f", t.rate());
-  return buf;
+  return fmt::format("{:.2f}", t.rate());
 }
 
 void run_calibrate(CalibrateArgs& a) {

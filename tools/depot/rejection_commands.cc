@@ -2,6 +2,8 @@
 // (a per-keypoint file, eval/keypoint_file.h) scored against a simulated
 // dataset's labels by the rule the built-in modes are scored with
 // (eval/keypoint_score.h).
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -30,9 +32,7 @@ struct RejectionArgs {
 // "undefined" when nothing was rejected (precision) or nothing moved (recall).
 std::string ratio_text(double v) {
   if (!std::isfinite(v)) return "undefined";
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.4f", v);
-  return buf;
+  return fmt::format("{:.4f}", v);
 }
 
 nlohmann::json ratio_json(double v) {

@@ -1,4 +1,6 @@
 // `depot sim ...`: render scenarios to datasets, list them, preview datasets.
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -74,18 +76,17 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
   if (s.subframes > 1.0) {
     // Under auto-exposure the exposure is each frame's own (exposures.txt).
     const bool automatic = scenario.sensor.exposure_control.automatic;
-    char times[96];
-    std::snprintf(times, sizeof(times), "exposure %s%.1f ms, readout %.1f ms",
-                  automatic ? "auto, up to " : "", scenario.sensor.longest_exposure() * 1e3,
-                  scenario.sensor.readout * 1e3);
+    const std::string times =
+        fmt::format("exposure {}{:.1f} ms, readout {:.1f} ms", automatic ? "auto, up to " : "",
+                    scenario.sensor.longest_exposure() * 1e3, scenario.sensor.readout * 1e3);
     if (scenario.sensor.motion_blur == "field")
       std::printf(
           "shutter: %.1f sub-frames per frame on average, moved from one render by the motion "
           "field in %.1f ms (%s; sim/sensor/motion_field.h)\n",
-          s.subframes, s.field_ms, times);
+          s.subframes, s.field_ms, times.c_str());
     else
       std::printf("shutter: %.1f colour renders per frame on average (%s; sim/sensor/shutter.h)\n",
-                  s.renders, times);
+                  s.renders, times.c_str());
   }
 }
 

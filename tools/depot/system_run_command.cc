@@ -6,6 +6,8 @@
 #include <sys/ioctl.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -37,10 +39,8 @@ class SystemProgressLine {
     const int decade = static_cast<int>(p.seconds / 10);
     if (!tty_ && !p.finished && decade == last_decade_) return;
     last_decade_ = decade;
-    char head[160];
-    std::snprintf(head, sizeof(head), "system %s: %s%.0f s", name_.c_str(),
-                  p.finished ? "ended after " : "", p.seconds);
-    std::string line = head;
+    std::string line =
+        fmt::format("system {}: {}{:.0f} s", name_, p.finished ? "ended after " : "", p.seconds);
     if (p.poses > 0)
       line += ", " + std::to_string(p.poses) + " of " + std::to_string(p.frames) +
               " frames in its trajectory";

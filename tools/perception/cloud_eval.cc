@@ -1,8 +1,9 @@
 #include "tools/perception/cloud_eval.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -68,8 +69,8 @@ void check_static_render(const std::string& static_dataset, const std::string& d
   const std::optional<dataset::DatasetInfo> info = dataset::read_info(static_dataset);
   if (!info) fail(static_dataset, not_static + "it has no info.json (the simulator writes one)");
   if (!info->dynamic_load || *info->dynamic_load != 0.0) {
-    char load[32] = "not stated";
-    if (info->dynamic_load) std::snprintf(load, sizeof(load), "%g", *info->dynamic_load);
+    const std::string load =
+        info->dynamic_load ? fmt::format("{:g}", *info->dynamic_load) : "not stated";
     fail(static_dataset, not_static + "its dynamic_load is " + load + how);
   }
   if (info->sensor && *info->sensor != "ideal")

@@ -1,8 +1,9 @@
 #include "tools/perception/segmenter_eval.h"
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <limits>
 
@@ -34,9 +35,7 @@ cv::Mat segment(slam::PersonSegmenter& segmenter, const cv::Mat& bgr, SegmenterF
 
 std::string fixed(double v, int digits = 3) {
   if (!std::isfinite(v)) return "-";
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.*f", digits, v);
-  return buf;
+  return fmt::format("{:.{}f}", v, digits);
 }
 
 }  // namespace
@@ -96,12 +95,9 @@ std::string SegmenterEval::text() const {
   std::string out;
   if (boxes) {
     out += "  image                          mask inside person boxes  boxes covered\n";
-    for (const SegmenterFrame& f : frames) {
-      char line[256];
-      std::snprintf(line, sizeof(line), "  %-30s %24s  %13s\n", f.name.c_str(),
-                    fixed(f.coverage.inside()).c_str(), fixed(f.coverage.covered()).c_str());
-      out += line;
-    }
+    for (const SegmenterFrame& f : frames)
+      out += fmt::format("  {:<30} {:>24}  {:>13}\n", f.name, fixed(f.coverage.inside()),
+                         fixed(f.coverage.covered()));
   } else {
     const eval::MaskCounts t = total();
     std::vector<double> ious;
@@ -111,19 +107,14 @@ std::string SegmenterEval::text() const {
     auto of_ious = [&ious](double p) {
       return ious.empty() ? std::numeric_limits<double>::quiet_NaN() : percentile(ious, p);
     };
-    char line[512];
-    std::snprintf(line, sizeof(line),
-                  "  person mask IoU: mean %s over %zu frames with people (median %s, p10 %s, "
-                  "p90 %s)\n  pooled pixels: IoU %s, precision %s, recall %s\n",
-                  fixed(mean_iou()).c_str(), ious.size(), fixed(of_ious(0.5)).c_str(),
-                  fixed(of_ious(0.1)).c_str(), fixed(of_ious(0.9)).c_str(), fixed(t.iou()).c_str(),
-                  fixed(t.precision()).c_str(), fixed(t.recall()).c_str());
-    out += line;
+    out += fmt::format(
+        "  person mask IoU: mean {} over {} frames with people (median {}, p10 {}, p90 {})\n  "
+        "pooled pixels: IoU {}, precision {}, recall {}\n",
+        fixed(mean_iou()), ious.size(), fixed(of_ious(0.5)), fixed(of_ious(0.1)),
+        fixed(of_ious(0.9)), fixed(t.iou()), fixed(t.precision()), fixed(t.recall()));
   }
-  char line[256];
-  std::snprintf(line, sizeof(line), "  %zu frames, median %.1f ms per frame (%s)\n", frames.size(),
-                median_ms(), segmenter.c_str());
-  return out + line;
+  return out + fmt::format("  {} frames, median {:.1f} ms per frame ({})\n", frames.size(),
+                           median_ms(), segmenter);
 }
 
 SegmenterEval evaluate_segmenter(slam::PersonSegmenter& segmenter, const std::string& dataset,
@@ -137,9 +128,7 @@ SegmenterEval evaluate_segmenter(slam::PersonSegmenter& segmenter, const std::st
   for (size_t i = 0; i < rgb.size(); i += every) {
     throw_if_interrupted(dataset);
     SegmenterFrame frame;
-    char stamp[32];
-    std::snprintf(stamp, sizeof(stamp), "%.6f", rgb[i].timestamp);
-    frame.name = stamp;
+    frame.name = fmt::format("{:.6f}", rgb[i].timestamp);
     const cv::Mat mask =
         segment(segmenter,
                 read_image((fs::path(dataset) / rgb[i].path).string(), ImageRead::kColor), frame);

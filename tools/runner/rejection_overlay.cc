@@ -1,6 +1,7 @@
 #include "tools/runner/rejection_overlay.h"
 
-#include <cstdio>
+#include <fmt/format.h>
+
 #include <filesystem>
 
 #include <opencv2/imgproc.hpp>
@@ -69,15 +70,12 @@ OverlayFolder::OverlayFolder(const std::string& path, size_t every)
 
 void OverlayFolder::on_frame(const FrameRecord& frame) {
   if (frame.index % every_ != 0) return;
-  char name[32];
-  std::snprintf(name, sizeof(name), "frames/%06zu.png", frame.index);
+  const std::string name = fmt::format("frames/{:06}.png", frame.index);
   write_png((std::filesystem::path(folder_.path()) / name).string(),
             draw_rejection_overlay(frame.bgr, *frame.filter,
                                    frame.truth ? &frame.truth->labels : nullptr),
             PngKind::kColor);
-  char row[96];
-  std::snprintf(row, sizeof(row), "%zu %.6f %s\n", frame.index, frame.timestamp, name);
-  index_ << row;
+  index_ << fmt::format("{} {:.6f} {}\n", frame.index, frame.timestamp, name);
 }
 
 void OverlayFolder::commit() {

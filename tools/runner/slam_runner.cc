@@ -1,5 +1,7 @@
 #include "tools/runner/slam_runner.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -329,11 +331,9 @@ RunSummary run_sequence(const RunOptions& o) {
         record_frame(i, feed, r, filter, truth.get(), settings.orb.scale_factor, judged);
     for (const auto& observer : observers) observer->on_frame(record);
     if (o.hooks.on_frame) o.hooks.on_frame(i, r, filter, system);
-    char detail[160];
-    std::snprintf(detail, sizeof(detail), "frame %zu %s features %d/%d inliers %d %.1f ms", i,
-                  slam::tracking_state_name(r.state), r.kept, r.keypoints, r.stats.inliers,
-                  r.timing.total_ms);
-    progress.update(i + 1, detail);
+    progress.update(i + 1, fmt::format("frame {} {} features {}/{} inliers {} {:.1f} ms", i,
+                                       slam::tracking_state_name(r.state), r.kept, r.keypoints,
+                                       r.stats.inliers, r.timing.total_ms));
   }
   progress.finish();
   system.finish();

@@ -3,11 +3,12 @@
 #include <stdlib.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <deque>
 #include <filesystem>
@@ -33,9 +34,7 @@ namespace {
 constexpr double kTimestampTolerance = 1e-3;
 
 std::string format_double(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.9g", v);
-  return buf;
+  return fmt::format("{:.9g}", v);
 }
 
 // ORB-SLAM2's RGB-D settings file (Examples/RGB-D/TUM1.yaml's keys) for
@@ -193,13 +192,10 @@ std::vector<StampedPose> read_system_trajectory(const SystemSpec& spec, const st
     if (it != sorted.end()) nearest = *it;
     if (it != sorted.begin() && std::abs(*(it - 1) - p.timestamp) < std::abs(nearest - p.timestamp))
       nearest = *(it - 1);
-    if (!(std::abs(nearest - p.timestamp) <= kTimestampTolerance)) {
-      char buf[160];
-      std::snprintf(buf, sizeof(buf),
-                    "timestamp %.6f is no frame of the dataset (nearest %.6f; allowed %.0f ms)",
-                    p.timestamp, nearest, 1000 * kTimestampTolerance);
-      fail(path, buf);
-    }
+    if (!(std::abs(nearest - p.timestamp) <= kTimestampTolerance))
+      fail(path, fmt::format("timestamp {:.6f} is no frame of the dataset (nearest {:.6f}; "
+                             "allowed {:.0f} ms)",
+                             p.timestamp, nearest, 1000 * kTimestampTolerance));
     p.timestamp = nearest;  // the frame's own timestamp, for exact matching
   }
   return out;

@@ -1,7 +1,8 @@
 #include "tools/harness/report/result_table.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
-#include <cstdio>
 
 #include "eval/svg_document.h"
 
@@ -9,9 +10,7 @@ namespace depot::harness {
 namespace {
 
 std::string fixed(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.*f", decimals, v);
-  return buf;
+  return fmt::format("{:.{}f}", v, decimals);
 }
 
 std::string display(const TableColumn& c, const TableValue& v) {
@@ -39,9 +38,7 @@ std::string csv_field(const std::string& text) {
 
 std::string csv_number(double v) {
   if (!std::isfinite(v)) return "";
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.9g", v);
-  return buf;
+  return fmt::format("{:.9g}", v);
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
 #include "tools/harness/report/sweep_tables.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <utility>
 
 #include "eval/improvement.h"
@@ -63,9 +64,7 @@ std::string runs_text(const SweepPlan& plan, const SweepSummary& s, size_t cell)
 
 // The RPE delta the runs used (all runs of a sweep use the same).
 std::string rpe_delta_text(const SweepSummary& s) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%g s", s.runs.empty() ? 1.0 : s.runs.front().rpe_delta_s);
-  return buf;
+  return fmt::format("{:g} s", s.runs.empty() ? 1.0 : s.runs.front().rpe_delta_s);
 }
 
 }  // namespace

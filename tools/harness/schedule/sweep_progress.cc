@@ -1,5 +1,7 @@
 #include "tools/harness/schedule/sweep_progress.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdio>
 
@@ -15,26 +17,21 @@ double tracked_percent(const RunRecord& r) {
 }  // namespace
 
 std::string describe_finished_job(const SweepJob& job, const SweepLayout& layout) {
-  char buf[256];
   if (job.kind == JobKind::kRender) {
     const DatasetRecord d = read_dataset_record(layout.dataset_record(job.id));
-    std::snprintf(buf, sizeof(buf), "rendered %s: %d frames, %.1f %% moving pixels", job.id.c_str(),
-                  d.frames, 100 * d.moving_share_mean);
-  } else {
-    const RunRecord r = read_run_record(layout.run_record(job.id));
-    if (!r.ok)
-      std::snprintf(buf, sizeof(buf), "%s: no trajectory (%s)", job.id.c_str(), r.error.c_str());
-    else if (std::isfinite(r.precision))
-      std::snprintf(buf, sizeof(buf),
-                    "%s: ATE %.4f m, precision %.2f (boundary static %.2f) recall %.2f, tracked "
-                    "%.1f %%, lost %d",
-                    job.id.c_str(), r.ate_rmse, r.precision_without_boundary, r.precision, r.recall,
-                    tracked_percent(r), r.lost);
-    else
-      std::snprintf(buf, sizeof(buf), "%s: ATE %.4f m, tracked %.1f %%, lost %d", job.id.c_str(),
-                    r.ate_rmse, tracked_percent(r), r.lost);
+    return fmt::format("rendered {}: {} frames, {:.1f} % moving pixels", job.id, d.frames,
+                       100 * d.moving_share_mean);
   }
-  return buf;
+  const RunRecord r = read_run_record(layout.run_record(job.id));
+  if (!r.ok) return fmt::format("{}: no trajectory ({})", job.id, r.error);
+  if (std::isfinite(r.precision))
+    return fmt::format(
+        "{}: ATE {:.4f} m, precision {:.2f} (boundary static {:.2f}) recall {:.2f}, tracked {:.1f} "
+        "%, lost {}",
+        job.id, r.ate_rmse, r.precision_without_boundary, r.precision, r.recall, tracked_percent(r),
+        r.lost);
+  return fmt::format("{}: ATE {:.4f} m, tracked {:.1f} %, lost {}", job.id, r.ate_rmse,
+                     tracked_percent(r), r.lost);
 }
 
 SweepProgress::SweepProgress(size_t total, bool enabled) : total_(total), enabled_(enabled) {}
