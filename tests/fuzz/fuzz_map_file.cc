@@ -30,6 +30,7 @@ void write_seed(const std::string& path) {
   static const ScaleLevels levels = ScaleLevels::make(8, 1.2f);
   const PinholeCamera camera;
   Map map;
+  MutexLock lock(map.mutex());
   std::vector<KeyFrame*> kfs;
   for (int k = 0; k < 2; ++k) {
     std::vector<cv::KeyPoint> kps;
@@ -55,7 +56,6 @@ void write_seed(const std::string& path) {
   }
   for (KeyFrame* kf : kfs) kf->update_connections();
   kfs[1]->loop_edges.insert(kfs[0]);
-  MutexLock lock(map.mutex());
   save_map_file(map, camera, levels, 0x1234abcd, path);
 }
 

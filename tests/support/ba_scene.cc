@@ -45,6 +45,7 @@ Features make_features(const std::vector<Keypoint>& kps, const PinholeCamera& ca
 }
 
 void build_ba_scene(BaScene& s, uint64_t seed, int n_gross_per_kf) {
+  MutexLock lock(s.map.mutex());  // the map is built as any writer builds it
   Rng rng(seed);
   const PinholeCamera cam;
   constexpr int kKeyframes = 5, kPoints = 400;
