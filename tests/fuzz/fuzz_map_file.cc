@@ -30,7 +30,7 @@ void write_seed(const std::string& path) {
   static const ScaleLevels levels = ScaleLevels::make(8, 1.2f);
   const PinholeCamera camera;
   Map map;
-  MutexLock lock(map.mutex());
+  depot::MutexLock lock(map.mutex());
   std::vector<KeyFrame*> kfs;
   for (int k = 0; k < 2; ++k) {
     std::vector<cv::KeyPoint> kps;
@@ -74,14 +74,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   depot::fuzz::expect_clean(path, [&] {
     ScaleLevels levels;
     Map map;
-    MutexLock lock(map.mutex());
+    depot::MutexLock lock(map.mutex());
     info = load_map_file_as_saved(path, levels, map);
   });
   if (info.levels > 0) {
     const ScaleLevels levels = ScaleLevels::make(info.levels, info.scale_factor);
     depot::fuzz::expect_clean(path, [&] {
       Map map;
-      MutexLock lock(map.mutex());
+      depot::MutexLock lock(map.mutex());
       load_map_file(path, info.camera, levels, info.vocabulary, map);
     });
   }
