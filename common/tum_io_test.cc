@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -63,10 +64,9 @@ TEST(TumIo, LinesOfOnlyWhitespaceAreBlank) {
 TEST(TumIo, ReadsKittiPosesAndEurocCsv) {
   const Eigen::Quaterniond q(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY()));
   const Eigen::Matrix3d r = q.toRotationMatrix();
-  char line[512];
-  std::snprintf(line, sizeof(line),
-                "%.12f %.12f %.12f 1.5 %.12f %.12f %.12f -2 %.12f %.12f %.12f 0.25\n", r(0, 0),
-                r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2));
+  const std::string line = fmt::format(
+      "{:.12f} {:.12f} {:.12f} 1.5 {:.12f} {:.12f} {:.12f} -2 {:.12f} {:.12f} {:.12f} 0.25\n",
+      r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2));
   const auto kitti = read_kitti_poses(write_temp("kitti.txt", std::string(line) + line));
   ASSERT_EQ(kitti.size(), 2u);
   EXPECT_LT(rotation_angle_between(kitti[1], make_pose(q, {1.5, -2, 0.25})), 1e-9);

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include <assimp/scene.h>
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
@@ -172,25 +173,21 @@ TEST(CliSlam, AteScoresTheFramesOfEveryMapOfTheAtlas) {
   for (int k = 0; k < 10; ++k) {
     const double t = 1.0 + 0.1 * k;
     const Eigen::Vector3d p(std::cos(0.5 * k), std::sin(0.5 * k), 0.1 * k);
-    char line[200];
-    std::snprintf(line, sizeof(line), "%.6f %.9f %.9f %.9f 0 0 0 1\n", t, p.x(), p.y(), p.z());
+    const std::string line =
+        fmt::format("{:.6f} {:.9f} {:.9f} {:.9f} 0 0 0 1\n", t, p.x(), p.y(), p.z());
     gt << line;
     if (k < 5) {
       run << line;
       atlas << line;
-      std::snprintf(line, sizeof(line), "%.6f %s 0\n", t, k ? "OK" : "NEW_MAP");
-      states << line;
+      states << fmt::format("{:.6f} {} 0\n", t, k ? "OK" : "NEW_MAP");
     } else if (k >= 6 && k <= 8) {
       const Eigen::Vector3d q = turn * p + Eigen::Vector3d(3, -1, 2);
       const Eigen::Quaterniond r = turn;
-      std::snprintf(line, sizeof(line), "%.6f %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n", t, q.x(),
-                    q.y(), q.z(), r.x(), r.y(), r.z(), r.w());
-      atlas << line;
-      std::snprintf(line, sizeof(line), "%.6f OTHER_MAP 1\n", t);
-      states << line;
+      atlas << fmt::format("{:.6f} {:.9f} {:.9f} {:.9f} {:.9f} {:.9f} {:.9f} {:.9f}\n", t, q.x(),
+                           q.y(), q.z(), r.x(), r.y(), r.z(), r.w());
+      states << fmt::format("{:.6f} OTHER_MAP 1\n", t);
     } else {
-      std::snprintf(line, sizeof(line), "%.6f LOST\n", t);
-      states << line;
+      states << fmt::format("{:.6f} LOST\n", t);
     }
   }
   gt.close(), run.close(), states.close(), atlas.close();

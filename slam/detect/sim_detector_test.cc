@@ -16,6 +16,7 @@
 
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -536,9 +537,7 @@ TEST_F(SimDetectorTest, MissingOrMalformedFilesAreClearErrors) {
   // Malformed lines of boxes.txt: each error names the file and line 4 (the
   // first data line after the three comment lines).
   const double t0 = SimDetector(*dataset_).frame_timestamp(0);
-  char stamp[64];
-  std::snprintf(stamp, sizeof(stamp), "%.6f", t0);
-  const std::string s = stamp;
+  const std::string s = fmt::format("{:.6f}", t0);
   const struct {
     std::string line, problem;
   } cases[] = {
