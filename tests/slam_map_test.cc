@@ -1,8 +1,6 @@
 // Map reuse on a rendered depot (320x240): a map saved and loaded
 // localises exactly as the map in memory, localisation adds nothing to the
 // map, and finds the camera as well as mapping did.
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -12,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "common/error.h"
+#include "common/testing/temp_path.h"
 #include "eval/ate.h"
 #include "eval/matched_trajectories.h"
 #include "slam/data/map.h"
@@ -62,9 +61,7 @@ TEST(SlamMap, ASavedMapLocalisesExactlyAsTheMapInMemory) {
   slam::SlamSettings settings = slam::load_settings(sequence.calibration_path());
   settings.threaded_mapping = false;  // reproducible
   sequence.set_depth_factor(settings.camera.depth_factor);
-  const std::string map_path = (std::filesystem::temp_directory_path() /
-                                ("depot_slam_map_test_" + std::to_string(::getpid()) + ".map"))
-                                   .string();
+  const std::string map_path = testkit::temp_path("slam_map_test") + ".map";
 
   // Map the sequence, keep the poses mapping gave, save.
   slam::System mapper(settings);

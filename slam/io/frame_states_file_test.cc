@@ -2,8 +2,6 @@
 // and the tracked share.
 #include "slam/io/frame_states_file.h"
 
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 
@@ -11,13 +9,14 @@
 #include <gtest/gtest.h>
 
 #include "common/error.h"
+#include "common/testing/temp_path.h"
 
 namespace depot::slam {
 namespace {
 
 std::string temp_file(const std::string& name, const std::string& text) {
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("depot_states_test_" + std::to_string(::getpid()));
+  // A folder of its own, so the file has exactly `name` (errors quote it).
+  const std::filesystem::path dir = testkit::temp_path("states");
   std::filesystem::create_directories(dir);
   const std::string path = (dir / name).string();
   std::ofstream(path) << text;

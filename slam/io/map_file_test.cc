@@ -11,13 +11,12 @@
 #include <map>
 #include <string>
 
-#include <unistd.h>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/binary_io.h"
 #include "common/error.h"
+#include "common/testing/temp_path.h"
 #include "slam/data/map_point.h"
 #include "tests/support/ba_scene.h"
 
@@ -82,9 +81,7 @@ class MapFileTest : public ::testing::Test {
     MapPoint* culled = *scene_.map.map_points().begin();
     culled->set_bad();
     scene_.map.erase_map_point(culled);
-    path_ = (std::filesystem::temp_directory_path() /
-             ("depot_map_file_test_" + std::to_string(::getpid()) + ".map"))
-                .string();
+    path_ = testkit::temp_path("map_file_test") + ".map";
     save_map_file(scene_.map, camera_, levels(), kVocabulary, path_);
   }
   void TearDown() override { std::filesystem::remove(path_); }

@@ -1,14 +1,12 @@
 #include "tests/support/dataset_reader.h"
 
-#include <unistd.h>
+#include <sys/wait.h>
 
 #include <array>
-#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
@@ -62,41 +60,6 @@ Dataset read_dataset(const std::string& root) {
     d.object_poses.at(frame_of.at(dataset::format_timestamp(r.timestamp)))[r.id] = {r.pose,
                                                                                     r.moving};
   return d;
-}
-
-namespace {
-
-fs::path& test_root_path() {
-  static fs::path root;
-  return root;
-}
-
-void remove_test_root() {
-  std::error_code ec;
-  fs::remove_all(test_root_path(), ec);
-}
-
-// One new folder per test process, made by mkdtemp so it can never be the
-// leftover of an earlier process that had the same id, and removed when the
-// process exits (set DEPOT_KEEP_TEST_FILES to keep it for a post-mortem) so
-// test runs do not fill the temporary folder.
-const fs::path& test_root() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    std::string pattern = (fs::temp_directory_path() / "depot_test_XXXXXX").string();
-    if (!::mkdtemp(pattern.data()))
-      throw std::runtime_error("cannot create a test folder like " + pattern);
-    test_root_path() = pattern;
-    if (!std::getenv("DEPOT_KEEP_TEST_FILES")) std::atexit(remove_test_root);
-  });
-  return test_root_path();
-}
-
-}  // namespace
-
-std::string temp_path(const std::string& tag) {
-  static std::atomic<int> counter{0};
-  return (test_root() / (tag + "_" + std::to_string(counter++))).string();
 }
 
 std::string write_yaml(const std::string& tag, const std::string& text) {

@@ -10,6 +10,7 @@
 #include <opencv2/core.hpp>
 
 #include "common/pose.h"
+#include "common/testing/temp_path.h"
 #include "common/tum_io.h"
 #include "dataset/calibration.h"
 #include "dataset/objects.h"
@@ -45,7 +46,7 @@ Dataset read_dataset(const std::string& root);
 
 // A path that does not exist yet, inside this test process's own temporary
 // folder (removed when the process exits).
-std::string temp_path(const std::string& tag);
+using testkit::temp_path;
 
 // Writes `text` to a new temp_path(tag) + ".yaml" and returns its path.
 std::string write_yaml(const std::string& tag, const std::string& text);

@@ -1,13 +1,10 @@
 #include "tests/support/room_vocabulary.h"
 
-#include <unistd.h>
-
-#include <cstdlib>
-#include <filesystem>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
 
+#include "common/testing/temp_path.h"
 #include "slam/feature/orb_extractor.h"
 #include "slam/place/vocabulary_file.h"
 #include "slam/place/vocabulary_training.h"
@@ -41,30 +38,13 @@ std::shared_ptr<const slam::Vocabulary> room_vocabulary() {
   return vocabulary;
 }
 
-namespace {
-
-std::string& saved_path() {
-  static std::string path;
-  return path;
-}
-
-void remove_saved() {
-  std::error_code ec;
-  std::filesystem::remove(saved_path(), ec);
-}
-
-}  // namespace
-
 const std::string& room_vocabulary_file() {
-  if (saved_path().empty()) {
-    const std::string path = (std::filesystem::temp_directory_path() /
-                              ("depot_room_vocabulary_" + std::to_string(getpid()) + ".voc"))
-                                 .string();
-    slam::save_vocabulary(*room_vocabulary(), path);
-    saved_path() = path;
-    std::atexit(remove_saved);
-  }
-  return saved_path();
+  static const std::string path = [] {
+    const std::string p = testkit::temp_path("room_vocabulary") + ".voc";
+    slam::save_vocabulary(*room_vocabulary(), p);
+    return p;
+  }();
+  return path;
 }
 
 }  // namespace depot::test
