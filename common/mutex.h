@@ -29,14 +29,12 @@
 #define DEPOT_CAPABILITY(name) DEPOT_THREAD_ANNOTATION(capability(name))
 #define DEPOT_SCOPED_CAPABILITY DEPOT_THREAD_ANNOTATION(scoped_lockable)
 #define DEPOT_GUARDED_BY(m) DEPOT_THREAD_ANNOTATION(guarded_by(m))
-#define DEPOT_PT_GUARDED_BY(m) DEPOT_THREAD_ANNOTATION(pt_guarded_by(m))
 #define DEPOT_REQUIRES(...) DEPOT_THREAD_ANNOTATION(requires_capability(__VA_ARGS__))
 #define DEPOT_EXCLUDES(...) DEPOT_THREAD_ANNOTATION(locks_excluded(__VA_ARGS__))
 #define DEPOT_ACQUIRE(...) DEPOT_THREAD_ANNOTATION(acquire_capability(__VA_ARGS__))
 #define DEPOT_RELEASE(...) DEPOT_THREAD_ANNOTATION(release_capability(__VA_ARGS__))
 #define DEPOT_ASSERT_CAPABILITY(m) DEPOT_THREAD_ANNOTATION(assert_capability(m))
 #define DEPOT_RETURN_CAPABILITY(m) DEPOT_THREAD_ANNOTATION(lock_returned(m))
-#define DEPOT_NO_THREAD_SAFETY_ANALYSIS DEPOT_THREAD_ANNOTATION(no_thread_safety_analysis)
 
 namespace depot {
 
@@ -80,7 +78,7 @@ class DEPOT_CAPABILITY("mutex") Mutex {
 };
 
 // Holds a Mutex for its scope (std::lock_guard); unlock() ends the hold
-// early, lock() takes it again.
+// early.
 class DEPOT_SCOPED_CAPABILITY MutexLock {
  public:
   explicit MutexLock(Mutex& mutex) DEPOT_ACQUIRE(mutex) : mutex_(mutex) { mutex_.lock(); }
@@ -93,10 +91,6 @@ class DEPOT_SCOPED_CAPABILITY MutexLock {
   void unlock() DEPOT_RELEASE() {
     mutex_.unlock();
     held_ = false;
-  }
-  void lock() DEPOT_ACQUIRE() {
-    mutex_.lock();
-    held_ = true;
   }
 
  private:
