@@ -7,6 +7,11 @@ find_package(nlohmann_json 3 REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(fmt 9 REQUIRED)  # text formatting (Debian libfmt-dev)
 find_package(PNG REQUIRED)
+find_package(ZLIB REQUIRED)  # CRC-32 of binary files and MCAP records
+# MCAP chunk compression (Debian libzstd-dev, liblz4-dev): no CMake packages.
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(ZSTD REQUIRED IMPORTED_TARGET libzstd)
+pkg_check_modules(LZ4 REQUIRED IMPORTED_TARGET liblz4)
 find_package(assimp 5.2 REQUIRED)  # model files (glTF/GLB, FBX, OBJ) for sim/assets
 
 find_package(mujoco 2.2 REQUIRED)

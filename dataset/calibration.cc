@@ -5,6 +5,7 @@
 
 #include "common/error.h"
 #include "common/image_size.h"
+#include "common/number_text.h"
 #include "common/yaml_fields.h"
 #include "common/yaml_file.h"
 
@@ -31,6 +32,40 @@ CameraCalibration read_camera_sections(const YAML::Node& root, const std::string
   const YamlFields depth(root["depth"], path, "depth");
   c.depth_factor = depth.number("factor", c.depth_factor, 1e-3, 1e6);
   c.close_baselines = depth.number("close_baselines", c.close_baselines, 1, 1000);
+  return c;
+}
+
+CameraCalibration calibration_of_intrinsics(const CameraCalibration& defaults, int width,
+                                            int height, double fx, double fy, double cx, double cy,
+                                            const LensCoefficients& lens,
+                                            const std::string& where) {
+  const auto check = [&where](const char* name, double v, double lo, double hi) {
+    if (!(v >= lo && v <= hi))
+      fail(where, std::string(name) + " " + shortest_number(v) + " is outside [" +
+                      shortest_number(lo) + ", " + shortest_number(hi) + "]");
+  };
+  check("width", width, kMinImageSide, kMaxImageSide);
+  check("height", height, kMinImageSide, kMaxImageSide);
+  check("fx", fx, 1, 1e5);
+  check("fy", fy, 1, 1e5);
+  check("cx", cx, 0, 8192);
+  check("cy", cy, 0, 8192);
+  check("k1", lens.k1, -10, 10);
+  check("k2", lens.k2, -10, 10);
+  check("p1", lens.p1, -1, 1);
+  check("p2", lens.p2, -1, 1);
+  check("k3", lens.k3, -10, 10);
+  CameraCalibration c = defaults;
+  c.width = width;
+  c.height = height;
+  c.fx = fx;
+  c.fy = fy;
+  c.cx = cx;
+  c.cy = cy;
+  c.lens = lens;
+  // As read_camera_sections keeps an absent baseline.
+  c.baseline = defaults.bf / c.fx;
+  c.bf = c.baseline * c.fx;
   return c;
 }
 

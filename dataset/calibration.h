@@ -44,6 +44,13 @@ struct CameraCalibration {
 CameraCalibration read_camera_sections(const YAML::Node& root, const std::string& path,
                                        const CameraCalibration& defaults = {});
 
+// A camera stated by its intrinsics alone (a ROS CameraInfo): everything
+// else as in `defaults`, the baseline kept as read_camera_sections keeps an
+// absent one. Checks the ranges calibration.yaml has; errors name `where`.
+CameraCalibration calibration_of_intrinsics(const CameraCalibration& defaults, int width,
+                                            int height, double fx, double fy, double cx, double cy,
+                                            const LensCoefficients& lens, const std::string& where);
+
 // A dataset's calibration.yaml, which must state the image size.
 CameraCalibration read_calibration(const std::string& path);
 

@@ -8,7 +8,11 @@
 # slurm-wlm and munge run the local single-node cluster of .ci/run's cluster
 # step (tools/slurm/local-cluster.sh); clang and libclang-rt-14-dev build the
 # libFuzzer targets (tests/fuzz, `fuzz` label); ccache speeds up rebuilds;
-# libfmt-dev formats text (numbers into tables, files and messages).
+# libfmt-dev formats text (numbers into tables, files and messages);
+# libzstd-dev and liblz4-dev compress the chunks of ROS 2 bags (MCAP), and
+# nodejs with npm runs the independent MCAP/CDR readers the bag tests check
+# our files with (their packages come from the npm registry, pinned in
+# tests/mcap/package-lock.json, into the build folder).
 set -euo pipefail
 
 packages=(
@@ -22,7 +26,12 @@ packages=(
   python3-open3d
   slurm-wlm munge
   clang libclang-rt-14-dev ccache
+  libzstd-dev liblz4-dev
+  nodejs
 )
+# A nodejs from NodeSource bundles npm (and conflicts with Debian's npm):
+# Debian's npm only where no npm is on the path.
+if ! command -v npm > /dev/null 2>&1; then packages+=(npm); fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -13,22 +13,21 @@
 
 namespace depot::slam {
 
-SlamSettings load_settings(const std::string& path, const SlamSettings& defaults) {
-  YAML::Node root = load_yaml_file(path, "settings file");
-  if (!root.IsMap()) fail(path, "settings must be a YAML map");
-  SlamSettings s = defaults;
-  // The camera and depth sections are calibration.yaml's (dataset/calibration.h).
-  dataset::CameraCalibration defaults_camera;
-  defaults_camera.width = s.camera.width;
-  defaults_camera.height = s.camera.height;
-  defaults_camera.fx = s.camera.fx;
-  defaults_camera.fy = s.camera.fy;
-  defaults_camera.cx = s.camera.cx;
-  defaults_camera.cy = s.camera.cy;
-  defaults_camera.lens = s.camera.lens;
-  defaults_camera.bf = s.camera.bf;
-  defaults_camera.depth_factor = s.camera.depth_factor;
-  const dataset::CameraCalibration c = dataset::read_camera_sections(root, path, defaults_camera);
+dataset::CameraCalibration camera_calibration_of(const SlamSettings& s) {
+  dataset::CameraCalibration c;
+  c.width = s.camera.width;
+  c.height = s.camera.height;
+  c.fx = s.camera.fx;
+  c.fy = s.camera.fy;
+  c.cx = s.camera.cx;
+  c.cy = s.camera.cy;
+  c.lens = s.camera.lens;
+  c.bf = s.camera.bf;
+  c.depth_factor = s.camera.depth_factor;
+  return c;
+}
+
+void set_camera(SlamSettings& s, const dataset::CameraCalibration& c, const std::string& source) {
   s.camera.width = c.width;
   s.camera.height = c.height;
   s.camera.fx = c.fx;
@@ -38,10 +37,18 @@ SlamSettings load_settings(const std::string& path, const SlamSettings& defaults
   // Lens distortion; a file without it keeps the defaults' (a later file
   // describes the same camera).
   s.camera.lens = c.lens;
-  set_undistorted_bounds(s.camera, path);
+  set_undistorted_bounds(s.camera, source);
   s.camera.bf = c.bf;
   s.camera.depth_factor = c.depth_factor;
   s.camera.close_depth = c.close_baselines * c.baseline;
+}
+
+SlamSettings load_settings(const std::string& path, const SlamSettings& defaults) {
+  YAML::Node root = load_yaml_file(path, "settings file");
+  if (!root.IsMap()) fail(path, "settings must be a YAML map");
+  SlamSettings s = defaults;
+  // The camera and depth sections are calibration.yaml's (dataset/calibration.h).
+  set_camera(s, dataset::read_camera_sections(root, path, camera_calibration_of(s)), path);
   const YamlFields orb(root["orb"], path, "orb");
   s.orb.n_features = orb.number<int>("features", s.orb.n_features, 50, 20000);
   s.orb.scale_factor = orb.number<float>("scale_factor", s.orb.scale_factor, 1.01, 2.0);

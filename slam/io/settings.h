@@ -5,6 +5,7 @@
 // settings directly.
 #include <string>
 
+#include "dataset/calibration.h"
 #include "slam/camera/pinhole_camera.h"
 #include "slam/feature/orb_extractor.h"
 #include "slam/loop/loop_closer.h"
@@ -25,6 +26,13 @@ struct SlamSettings {
   bool loop_closing = true;
   LoopCloserParams loop_closer;
 };
+
+// The settings' camera as calibration.yaml's sections describe one (the
+// defaults a calibration is read over).
+dataset::CameraCalibration camera_calibration_of(const SlamSettings& s);
+// Sets the settings' camera from a calibration (`source` names it in
+// errors): intrinsics, lens, bf, depth factor, ThDepth.
+void set_camera(SlamSettings& s, const dataset::CameraCalibration& c, const std::string& source);
 
 // Reads `path`; keys not present keep their defaults. Every problem throws
 // depot::Error "<path>: <what>".

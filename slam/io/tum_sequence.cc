@@ -72,6 +72,10 @@ TumSequence::TumSequence(const std::string& folder, double depth_factor)
              : "no image of rgb/ has one of depth/ within 0.02 s");
 }
 
+std::string TumSequence::colour_location(size_t i) const {
+  return (fs::path(folder_) / frames_.at(i).rgb_path).string();
+}
+
 std::string TumSequence::calibration_path() const {
   fs::path p = fs::path(folder_) / "calibration.yaml";
   return fs::is_regular_file(p) ? p.string() : "";

@@ -137,11 +137,11 @@ int main(int argc, char** argv) {
         if (i == n / 10) m.rss_early = rss_mb(), m.kf_early = system.n_keyframes();
       };
       options.hooks.after_run = [&](depot::slam::System& system,
-                                    const depot::slam::TumSequence& sequence) {
+                                    const depot::slam::RgbdSequence& sequence) {
         if (probe_relocalisation) {
           cv::Mat bgr, depth;
           sequence.load(0, bgr, depth);
-          double t = sequence.entry(n - 1).rgb_timestamp;
+          double t = sequence.timestamp(n - 1);
           const cv::Mat black = cv::Mat::zeros(bgr.size(), CV_8UC3);
           const cv::Mat no_depth = cv::Mat::zeros(depth.size(), CV_32F);
           for (size_t k = 0; k < n; k += std::max<size_t>(1, n / 30)) {

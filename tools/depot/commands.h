@@ -16,6 +16,8 @@ void register_realism_eval_command(CLI::App* eval_group);
 // `depot eval rejection`, added to the eval group.
 void register_rejection_eval_command(CLI::App* eval_group);
 void register_sweep_commands(CLI::App& app);
+// `depot export mcap`.
+void register_export_commands(CLI::App& app);
 // `depot slam vocabulary train|info`, added to the slam group.
 void register_vocabulary_commands(CLI::App* slam_group);
 // `depot slam map info|export`, added to the slam group.

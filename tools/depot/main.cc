@@ -55,6 +55,7 @@ int main(int argc, char** argv) {
   depot::cli::register_slam_commands(app);
   depot::cli::register_eval_commands(app);
   depot::cli::register_sweep_commands(app);
+  depot::cli::register_export_commands(app);
   refuse_non_finite_numbers(app);
   depot::install_interrupt_handler();
 

@@ -12,14 +12,14 @@ DenseMask parse_dense_mask(const std::string& name) {
   fail("--dense-mask", "unknown mask '" + name + "' (expected rejection, labels or none)");
 }
 
-DenseMapResult write_dense_map(const std::string& path, const slam::TumSequence& sequence,
+DenseMapResult write_dense_map(const std::string& path, const slam::RgbdSequence& sequence,
                                const slam::PinholeCamera& camera,
                                const std::vector<StampedPose>& keyframes, DenseMask mask,
                                const std::map<double, cv::Mat>& rejection_masks,
                                const eval::MotionTruth* truth,
                                const slam::DenseCloudParams& params) {
   std::map<double, size_t> frame_at;  // rgb timestamp -> frame index
-  for (size_t i = 0; i < sequence.size(); ++i) frame_at[sequence.entry(i).rgb_timestamp] = i;
+  for (size_t i = 0; i < sequence.size(); ++i) frame_at[sequence.timestamp(i)] = i;
   slam::DenseCloud cloud(camera, params);
   DenseMapResult result;
   cv::Mat bgr, depth;
@@ -82,7 +82,7 @@ void DenseMapBuilder::on_frame(const FrameRecord& frame) {
     keyframe_masks_[frame.timestamp] = filter_->moving_mask(frame.bgr.size());
 }
 
-void DenseMapBuilder::on_finish(const slam::System& system, const slam::TumSequence& sequence,
+void DenseMapBuilder::on_finish(const slam::System& system, const slam::RgbdSequence& sequence,
                                 RunSummary& summary) {
   const DenseMapResult cloud =
       write_dense_map(path_, sequence, camera_, system.keyframe_trajectory(), mask_,

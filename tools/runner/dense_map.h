@@ -12,7 +12,7 @@
 #include "common/tum_io.h"
 #include "eval/motion_truth.h"
 #include "slam/dense/dense_cloud.h"
-#include "slam/io/tum_sequence.h"
+#include "slam/io/rgbd_sequence.h"
 #include "slam/reject/rejection_filter.h"
 #include "tools/runner/frame_observer.h"
 
@@ -38,7 +38,7 @@ struct DenseMapResult {
 // gives them. Writes `path` through a staged file. Throws depot::Error
 // naming `path`, and writes nothing, when no keyframe could be fused or the
 // fused views leave no point.
-DenseMapResult write_dense_map(const std::string& path, const slam::TumSequence& sequence,
+DenseMapResult write_dense_map(const std::string& path, const slam::RgbdSequence& sequence,
                                const slam::PinholeCamera& camera,
                                const std::vector<StampedPose>& keyframes, DenseMask mask,
                                const std::map<double, cv::Mat>& rejection_masks,
@@ -58,7 +58,7 @@ class DenseMapBuilder : public FrameObserver {
                   const eval::MotionTruth* truth, const std::string& dataset,
                   const std::string& mode);
   void on_frame(const FrameRecord& frame) override;
-  void on_finish(const slam::System& system, const slam::TumSequence& sequence,
+  void on_finish(const slam::System& system, const slam::RgbdSequence& sequence,
                  RunSummary& summary) override;
 
  private:

@@ -9,7 +9,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "slam/io/tum_sequence.h"
+#include "slam/io/rgbd_sequence.h"
 #include "slam/reject/rejection_filter.h"
 #include "slam/system/system.h"
 #include "tools/runner/run_summary.h"
@@ -40,7 +40,7 @@ class FrameObserver {
   // After the last frame, the system finished (final poses after loop
   // closing and global adjustment): what needs the final map, and the
   // observer's figures into the summary.
-  virtual void on_finish(const slam::System& /*system*/, const slam::TumSequence& /*sequence*/,
+  virtual void on_finish(const slam::System& /*system*/, const slam::RgbdSequence& /*sequence*/,
                          RunSummary& /*summary*/) {}
   // The run succeeded (some frame got a pose): files staged so far appear.
   // A run that fails never calls it, and its staged files are removed.

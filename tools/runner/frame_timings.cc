@@ -21,7 +21,7 @@ void FrameTimings::on_frame(const FrameRecord& frame) {
   flow_.push_back(frame.rejection.flow_ms);
 }
 
-void FrameTimings::on_finish(const slam::System&, const slam::TumSequence&, RunSummary& summary) {
+void FrameTimings::on_finish(const slam::System&, const slam::RgbdSequence&, RunSummary& summary) {
   add_to(summary);
 }
 

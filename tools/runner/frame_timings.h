@@ -10,7 +10,7 @@ namespace depot::runner {
 class FrameTimings : public FrameObserver {
  public:
   void on_frame(const FrameRecord& frame) override;
-  void on_finish(const slam::System& system, const slam::TumSequence& sequence,
+  void on_finish(const slam::System& system, const slam::RgbdSequence& sequence,
                  RunSummary& summary) override;
   // The figures so far into `summary` (on_finish's work).
   void add_to(RunSummary& summary) const;

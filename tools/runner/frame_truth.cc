@@ -33,7 +33,7 @@ void RejectionScoring::on_frame(const FrameRecord& frame) {
   score_with_depth_.add(keep_d, moving_d, boundary_d);
 }
 
-void RejectionScoring::on_finish(const slam::System&, const slam::TumSequence&,
+void RejectionScoring::on_finish(const slam::System&, const slam::RgbdSequence&,
                                  RunSummary& summary) {
   summary.score = score_;
   summary.score_with_depth = score_with_depth_;

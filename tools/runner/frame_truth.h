@@ -27,7 +27,7 @@ FrameTruth judge_frame(const eval::MotionTruth& truth, double timestamp,
 class RejectionScoring : public FrameObserver {
  public:
   void on_frame(const FrameRecord& frame) override;
-  void on_finish(const slam::System& system, const slam::TumSequence& sequence,
+  void on_finish(const slam::System& system, const slam::RgbdSequence& sequence,
                  RunSummary& summary) override;
 
  private:

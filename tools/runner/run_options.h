@@ -12,7 +12,7 @@
 
 #include "common/yaml_overrides.h"
 #include "slam/dense/dense_cloud.h"
-#include "slam/io/tum_sequence.h"
+#include "slam/io/rgbd_sequence.h"
 #include "slam/reject/rejection_filter.h"
 #include "slam/system/system.h"
 #include "slam/track/tracking_state.h"
@@ -91,7 +91,7 @@ struct RunHooks {
   // Once after the last frame, with the system finished and the sequence,
   // before the summary is taken: e.g. to probe relocalisation with frames
   // shown again.
-  std::function<void(slam::System& system, const slam::TumSequence& sequence)> after_run;
+  std::function<void(slam::System& system, const slam::RgbdSequence& sequence)> after_run;
 };
 
 struct RunOptions {

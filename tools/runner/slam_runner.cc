@@ -21,8 +21,8 @@
 #include "slam/detect/detector_factory.h"
 #include "slam/detect/sim_detector.h"
 #include "slam/io/frame_states_file.h"
+#include "slam/io/rgbd_sequence.h"
 #include "slam/io/settings.h"
-#include "slam/io/tum_sequence.h"
 #include "slam/reject/point_sets.h"
 #include "slam/system/system.h"
 #include "tools/runner/dense_map.h"
@@ -85,13 +85,13 @@ namespace {
 
 // The images must have the camera's size: say which file, which sizes, and
 // where the camera came from, before any work.
-void check_image_size(const slam::TumSequence& sequence, const slam::SlamSettings& settings,
+void check_image_size(const slam::RgbdSequence& sequence, const slam::SlamSettings& settings,
                       const std::string& settings_source) {
   cv::Mat bgr, depth;
   sequence.load(0, bgr, depth);
   const int w = settings.camera.width, h = settings.camera.height;
   if (bgr.cols == w && bgr.rows == h) return;
-  fail((fs::path(sequence.folder()) / sequence.entry(0).rgb_path).string(),
+  fail(sequence.colour_location(0),
        "image is " + std::to_string(bgr.cols) + "x" + std::to_string(bgr.rows) +
            " but the camera of " + settings_source + " is " + std::to_string(w) + "x" +
            std::to_string(h) + " (give --settings with the dataset's intrinsics)");
@@ -135,13 +135,16 @@ namespace {
 // The settings of a run: the dataset's calibration.yaml (else the TUM fr3
 // Kinect defaults), then --settings, then the run's own switches; `source`
 // says where the camera came from, for errors and the summary.
-slam::SlamSettings load_run_settings(const RunInput& in, const slam::TumSequence& sequence,
+slam::SlamSettings load_run_settings(const RunInput& in, const slam::RgbdSequence& sequence,
                                      std::string& source) {
   slam::SlamSettings settings;
   source = "the TUM fr3 Kinect defaults (no calibration.yaml)";
   if (!sequence.calibration_path().empty()) {
     settings = slam::load_settings(sequence.calibration_path(), settings);
     source = sequence.calibration_path();
+  } else if (const auto camera = sequence.recorded_camera(slam::camera_calibration_of(settings))) {
+    source = sequence.source() + " (its camera_info)";
+    slam::set_camera(settings, *camera, source);
   }
   if (!in.settings.empty()) {
     settings = slam::load_settings(in.settings, settings);
@@ -154,7 +157,7 @@ slam::SlamSettings load_run_settings(const RunInput& in, const slam::TumSequence
 }
 
 // The input's checks, before any work; returns the number of frames to run.
-size_t check_input(const RunOptions& o, slam::TumSequence& sequence,
+size_t check_input(const RunOptions& o, slam::RgbdSequence& sequence,
                    const slam::SlamSettings& settings, const std::string& settings_source) {
   if (o.map.localise_only && o.map.load_map.empty())
     fail("--localise-only", "needs a map to localise in (--load-map M)");
@@ -165,7 +168,8 @@ size_t check_input(const RunOptions& o, slam::TumSequence& sequence,
     fail(o.input.dataset, "has " + std::to_string(sequence.size()) + " frames; --frames asks for " +
                               std::to_string(*frames));
   check_image_size(sequence, settings, settings_source);
-  if (sequence.calibration_path().empty() && o.input.settings.empty())
+  if (sequence.calibration_path().empty() && o.input.settings.empty() &&
+      !sequence.recorded_camera(slam::camera_calibration_of(settings)))
     std::fprintf(stderr,
                  "depot: warning: %s: no calibration.yaml; using the TUM fr3 Kinect intrinsics "
                  "(%dx%d, fx %.1f fy %.1f cx %.1f cy %.1f; give --settings to choose others)\n",
@@ -209,14 +213,14 @@ std::vector<std::unique_ptr<FrameObserver>> make_observers(const RunOptions& o,
 // after frame 0 when the camera is paced.
 class FrameFeed {
  public:
-  FrameFeed(const slam::TumSequence& sequence, double rate_hz)
+  FrameFeed(const slam::RgbdSequence& sequence, double rate_hz)
       : sequence_(sequence), rate_hz_(rate_hz) {
     sequence_.load(0, bgr_[0], depth_[0]);
     start_ = Clock::now();  // frame 0 arrives
   }
   const cv::Mat& bgr(size_t k) const { return bgr_[k % 2]; }
   const cv::Mat& depth(size_t k) const { return depth_[k % 2]; }
-  double timestamp(size_t k) const { return sequence_.entry(k).rgb_timestamp; }
+  double timestamp(size_t k) const { return sequence_.timestamp(k); }
   // Loads frame k (frame 0 is loaded already) and waits for its arrival.
   void receive(size_t k) {
     if (k > 0) sequence_.load(k, bgr_[k % 2], depth_[k % 2]);
@@ -232,7 +236,7 @@ class FrameFeed {
 
  private:
   using Clock = std::chrono::steady_clock;
-  const slam::TumSequence& sequence_;
+  const slam::RgbdSequence& sequence_;
   double rate_hz_;
   cv::Mat bgr_[2], depth_[2];
   Clock::time_point start_;
@@ -297,7 +301,8 @@ std::string no_frame_tracked(const RunSummary& summary, const std::string& load_
 
 RunSummary run_sequence(const RunOptions& o) {
   RunSummary summary;
-  slam::TumSequence sequence(o.input.dataset);
+  const std::unique_ptr<slam::RgbdSequence> opened = slam::open_sequence(o.input.dataset);
+  slam::RgbdSequence& sequence = *opened;
   const slam::SlamSettings settings = load_run_settings(o.input, sequence, summary.settings_source);
   const size_t n = check_input(o, sequence, settings, summary.settings_source);
   // Rejection, truth and outputs: all checked before any work.
