@@ -98,7 +98,7 @@ async function write() {
   const colour = await channel("/cam/rgb", image);
   const depth = await channel("/cam/depth", image);
   const camInfo = await channel("/cam/rgb_info", info);
-  const W = 8, H = 6;
+  const W = 40, H = 32;
   for (let f = 0; f < 3; ++f) {
     const sec = 100 + f, nanosec = 250000000;
     const header = { stamp: { sec, nanosec }, frame_id: "cam" };
