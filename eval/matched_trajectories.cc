@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "dataset/ros2/bag_trajectory.h"
 
 namespace depot::eval {
 namespace {
@@ -64,7 +65,7 @@ MatchedTrajectories match_trajectories(const std::vector<StampedPose>& reference
 MatchedTrajectories load_matched_trajectories(const std::string& reference_path,
                                               const std::string& estimate_path,
                                               const AssociationOptions& options) {
-  const std::vector<StampedPose> reference = read_tum_trajectory(reference_path);
+  const std::vector<StampedPose> reference = ros2::read_trajectory(reference_path);
   const std::vector<StampedPose> estimate = read_tum_trajectory(estimate_path);
   return match_trajectories(reference, estimate, options, reference_path, estimate_path);
 }

@@ -24,7 +24,7 @@ uint16_t channel_of(const mcap::Reader& reader, const std::string& topic, const 
       topics += (topics.empty() ? "" : ", ") + other.topic;
     fail(reader.path(), "no " + what + " topic " + topic +
                             " (the bag has: " + (topics.empty() ? "no topics" : topics) +
-                            "; name the topic with --" + what + "-topic)");
+                            "; name it with --" + what + "-topic)");
   }
   const auto schema = reader.schemas().find(c->schema_id);
   const std::string schema_name = schema == reader.schemas().end() ? "" : schema->second.name;
@@ -55,6 +55,9 @@ cv::Mat image_matrix(const ros2::Image& m, int type, size_t pixel_bytes, const s
 
 McapSequence::McapSequence(const std::string& path, BagTopics topics)
     : path_(path), topics_(std::move(topics)), reader_(std::make_unique<mcap::Reader>(path)) {
+  if (topics_.colour.empty()) topics_.colour = ros2::kColourTopic;
+  if (topics_.depth.empty()) topics_.depth = ros2::kDepthTopic;
+  if (topics_.colour_info.empty()) topics_.colour_info = ros2::kColourInfoTopic;
   const uint16_t colour = channel_of(*reader_, topics_.colour, ros2::image_type().name, "colour");
   const uint16_t depth = channel_of(*reader_, topics_.depth, ros2::image_type().name, "depth");
   const mcap::Channel* info = reader_->channel(topics_.colour_info);
@@ -141,9 +144,9 @@ std::optional<dataset::CameraCalibration> McapSequence::recorded_camera(
                                             info.k[2], info.k[5], lens, where);
 }
 
-std::unique_ptr<RgbdSequence> open_sequence(const std::string& path) {
+std::unique_ptr<RgbdSequence> open_sequence(const std::string& path, const BagTopics& topics) {
   if (path.size() > 5 && path.compare(path.size() - 5, 5, ".mcap") == 0)
-    return std::make_unique<McapSequence>(path);
+    return std::make_unique<McapSequence>(path, topics);
   return std::make_unique<TumSequence>(path);
 }
 

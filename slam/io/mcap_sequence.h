@@ -16,12 +16,6 @@
 
 namespace depot::slam {
 
-struct BagTopics {
-  std::string colour = ros2::kColourTopic;
-  std::string depth = ros2::kDepthTopic;
-  std::string colour_info = ros2::kColourInfoTopic;
-};
-
 class McapSequence : public RgbdSequence {
  public:
   // Throws depot::Error "<path>: ..." for a file that is not a readable bag,

@@ -38,8 +38,14 @@ class RgbdSequence {
   virtual void set_depth_factor(double /*factor*/) {}
 };
 
-// A TUM folder, or a ROS 2 bag for a path ending in ".mcap" (default
-// topics: mcap_sequence.h). Throws depot::Error naming the path.
-std::unique_ptr<RgbdSequence> open_sequence(const std::string& path);
+// The topics a bag's frames are read from; empty: the defaults of
+// dataset/ros2/bag_layout.h (those of the ROS 2 camera drivers).
+struct BagTopics {
+  std::string colour, depth, colour_info;
+};
+
+// A TUM folder, or a ROS 2 bag for a path ending in ".mcap". Throws
+// depot::Error naming the path.
+std::unique_ptr<RgbdSequence> open_sequence(const std::string& path, const BagTopics& topics = {});
 
 }  // namespace depot::slam

@@ -12,6 +12,7 @@
 
 #include "common/staged_file.h"
 #include "common/tum_io.h"
+#include "dataset/ros2/bag_trajectory.h"
 #include "eval/ate.h"
 #include "eval/improvement.h"
 #include "eval/maps_ate.h"
@@ -66,7 +67,10 @@ CLI::Validator positive_number() {
 }
 
 void add_common_options(CLI::App* command, CommonArgs& args) {
-  command->add_option("GT", args.reference_path, "ground-truth trajectory (TUM format)")
+  command
+      ->add_option(
+          "GT", args.reference_path,
+          "ground-truth trajectory (TUM format, or a ROS 2 bag: its /depot/ground_truth/pose)")
       ->required();
   command->add_option("EST", args.estimate_path, "estimated trajectory (TUM format)")->required();
   command
@@ -143,7 +147,7 @@ std::optional<eval::MapsAte> maps_ate(const AteArgs& args,
 
 void run_ate(const AteArgs& args) {
   check_outputs(args.common);
-  const std::vector<StampedPose> reference = read_tum_trajectory(args.common.reference_path);
+  const std::vector<StampedPose> reference = ros2::read_trajectory(args.common.reference_path);
   const eval::MatchedTrajectories matched = eval::match_trajectories(
       reference, read_tum_trajectory(args.common.estimate_path), args.common.association,
       args.common.reference_path, args.common.estimate_path);

@@ -9,6 +9,7 @@
 #include "common/staged_file.h"
 #include "common/tum_io.h"
 #include "common/yaml_overrides.h"
+#include "dataset/ros2/bag_layout.h"
 #include "slam/io/frame_states_file.h"
 #include "slam/reject/rejection_settings.h"
 #include "tools/depot/cli_errors.h"
@@ -337,8 +338,17 @@ void register_slam_commands(CLI::App& app) {
   CLI::App* run =
       slam->add_subcommand("run", "Track a TUM RGB-D folder and write the trajectory (TUM format)");
   run->add_option("dataset", args->options.input.dataset,
-                  "TUM RGB-D folder (associations.txt or rgb.txt + depth.txt)")
+                  "TUM RGB-D folder (associations.txt or rgb.txt + depth.txt) or ROS 2 bag (.mcap)")
       ->required();
+  slam::BagTopics& topics = args->options.input.topics;
+  run->add_option("--colour-topic", topics.colour, "A bag's colour images (sensor_msgs/Image)")
+      ->default_str(ros2::kColourTopic);
+  run->add_option("--depth-topic", topics.depth,
+                  "A bag's depth images registered to colour (16UC1 mm or 32FC1 m)")
+      ->default_str(ros2::kDepthTopic);
+  run->add_option("--camera-info-topic", topics.colour_info,
+                  "A bag's colour camera_info (the camera, unless --settings names one)")
+      ->default_str(ros2::kColourInfoTopic);
   run->add_option("-o,--output", args->output,
                   "Trajectory file (tracked frames, camera-to-world); the state of every frame "
                   "goes beside it (run.txt -> run.states.txt)")

@@ -20,7 +20,8 @@
 namespace depot::runner {
 
 struct RunInput {
-  std::string dataset;           // a TUM RGB-D folder
+  std::string dataset;           // a TUM RGB-D folder or a ROS 2 bag (.mcap)
+  slam::BagTopics topics;        // a bag's colour, depth and camera_info topics
   std::optional<size_t> frames;  // only the first N
   std::string settings;          // settings YAML over the dataset's calibration.yaml ("" = none)
   std::string vocabulary;        // place-recognition vocabulary ("" = the settings' or the default)

@@ -301,7 +301,7 @@ std::string no_frame_tracked(const RunSummary& summary, const std::string& load_
 
 RunSummary run_sequence(const RunOptions& o) {
   RunSummary summary;
-  const std::unique_ptr<slam::RgbdSequence> opened = slam::open_sequence(o.input.dataset);
+  const std::unique_ptr<slam::RgbdSequence> opened = slam::open_sequence(o.input.dataset, o.input.topics);
   slam::RgbdSequence& sequence = *opened;
   const slam::SlamSettings settings = load_run_settings(o.input, sequence, summary.settings_source);
   const size_t n = check_input(o, sequence, settings, summary.settings_source);
