@@ -73,6 +73,9 @@ class BinaryReader {
   }
   size_t at() const { return at_; }
   size_t left() const { return bytes_.size() - at_; }
+  // Throws "truncated" unless `n` more bytes are there (before a caller
+  // allocates for them).
+  void require(size_t n) const { need(n); }
 
  private:
   const char* need(size_t n) const {

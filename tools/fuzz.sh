@@ -56,7 +56,7 @@ if [ "$build" = 1 ]; then
   # -O1 -g with assertions on: readable stacks, fast enough to fuzz.
   locked env CC=clang CXX=clang++ cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
-    -DDEPOT_FUZZ=ON -DDEPOT_BUILD_TESTS=OFF -DDEPOT_BUILD_BENCH=OFF >/dev/null
+    -DDEPOT_FUZZ=ON -DDEPOT_BUILD_TESTS=OFF -DDEPOT_BUILD_BENCH=OFF -DDEPOT_BUILD_PYTHON=OFF >/dev/null
   locked cmake --build "$dir" --target fuzz -j"$(nproc)"
   build_seconds=$(($(date +%s) - start))
 fi
@@ -89,6 +89,7 @@ make_seeds() {
     detector_config) cp scenes/detectors/*.yaml scenes/segmenters/*.yaml "$seeds"/ ;;
     map_file) DEPOT_FUZZ_WRITE_SEED="$seeds/writer.map" "$bin" >/dev/null 2>&1 ;;
     vocabulary) DEPOT_FUZZ_WRITE_SEED="$seeds/writer.voc" "$bin" >/dev/null 2>&1 ;;
+    mcap_bag) DEPOT_FUZZ_WRITE_SEED="$seeds/writer.mcap" "$bin" >/dev/null 2>&1 ;;
     ply_file) DEPOT_FUZZ_WRITE_SEED="$seeds/writer.ply" "$bin" >/dev/null 2>&1 ;;
   esac
   return 0

@@ -12,7 +12,8 @@
 # libzstd-dev and liblz4-dev compress the chunks of ROS 2 bags (MCAP), and
 # nodejs with npm runs the independent MCAP/CDR readers the bag tests check
 # our files with (their packages come from the npm registry, pinned in
-# tests/mcap/package-lock.json, into the build folder).
+# tests/mcap/package-lock.json, into the build folder); pybind11-dev builds
+# `import depot` for Debian's python3, whose numpy and pytest its tests use.
 set -euo pipefail
 
 packages=(
@@ -28,6 +29,7 @@ packages=(
   clang libclang-rt-14-dev ccache
   libzstd-dev liblz4-dev
   nodejs
+  pybind11-dev python3-dev python3-numpy python3-pytest
 )
 # A nodejs from NodeSource bundles npm (and conflicts with Debian's npm):
 # Debian's npm only where no npm is on the path.

@@ -82,7 +82,7 @@ if [ -f build/vocabulary/depot_orb.voc ]; then
 fi
 start=$(date +%s)
 cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDEPOT_BUILD_TESTS=ON \
-  -DDEPOT_BUILD_BENCH=OFF -DDEPOT_SANITIZE="$kind" "${compiler[@]}" "${vocabulary[@]}" >/dev/null
+  -DDEPOT_BUILD_BENCH=OFF -DDEPOT_BUILD_PYTHON=OFF -DDEPOT_SANITIZE="$kind" "${compiler[@]}" "${vocabulary[@]}" >/dev/null
 cmake --build "$dir" -j"$(nproc)" --target "${targets[@]}"
 built=$(date +%s)
 status=0

@@ -236,6 +236,12 @@ const std::string& Reader::chunk_records(uint64_t chunk_offset) {
   const Compression compression = parse_compression(r.string(), where);
   const uint64_t compressed_size = r.u64();
   if (compressed_size > r.left()) fail(where, "truncated chunk record");
+  // No chunk of a real bag comes near this; a damaged size must not make us
+  // allocate it.
+  constexpr uint64_t kMaxChunk = uint64_t{1} << 30;
+  if (uncompressed_size > kMaxChunk)
+    fail(where, fmt::format("chunk says it holds {} bytes uncompressed (more than 1 GiB: damaged)",
+                            uncompressed_size));
   cached_chunk_.reset();
   cached_records_ =
       decompress(compression, content.substr(r.at(), compressed_size), uncompressed_size, where);

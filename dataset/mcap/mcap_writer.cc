@@ -109,7 +109,7 @@ void Writer::flush_chunk() {
   chunk.u64(chunk_start_);
   chunk.u64(chunk_end_);
   chunk.u64(chunk_.size());
-  chunk.u32(crc_update(0, chunk_));
+  chunk.u32(options_.crcs ? crc_update(0, chunk_) : 0);
   chunk.string(compression_name(options_.compression));
   chunk.u64(compressed.size());
   chunk.bytes(compressed);
@@ -141,7 +141,7 @@ void Writer::close() {
   if (closed_) return;
   flush_chunk();
   RecordWriter data_end;
-  data_end.u32(data_crc_);
+  data_end.u32(options_.crcs ? data_crc_ : 0);
   emit(data_end.framed(Opcode::kDataEnd));
 
   // The summary, grouped by opcode, each group found by a summary offset.
@@ -211,7 +211,7 @@ void Writer::close() {
   footer_head.u64(summary_offset_start);
   emit(footer_head.content());
   RecordWriter footer_crc;
-  footer_crc.u32(data_crc_);
+  footer_crc.u32(options_.crcs ? data_crc_ : 0);
   emit(footer_crc.content());
   emit(std::string(kMagic, sizeof kMagic));
   file_.commit();

@@ -24,6 +24,10 @@ struct WriterOptions {
   // A chunk is closed once its records pass this size: a few frames of
   // 640x480 RGB-D, so a reader seeking to one decompresses little.
   size_t chunk_size = 4u << 20;
+  // CRCs of chunks, the data section and the summary (false: zero, "not
+  // computed" in the spec; the fuzz target's seed, so mutations reach the
+  // parsers instead of the CRC checks).
+  bool crcs = true;
   std::string profile = "ros2";
   std::string library = "depot-slam";
 };

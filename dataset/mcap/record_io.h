@@ -60,6 +60,7 @@ class RecordReader {
   uint32_t u32() { return in_.take<uint32_t>(); }
   uint64_t u64() { return in_.take<uint64_t>(); }
   std::string bytes(size_t n) {
+    in_.require(n);  // "truncated" before allocating
     std::string s(n, '\0');
     in_.take_bytes(s.data(), n);
     return s;

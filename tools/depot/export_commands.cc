@@ -31,8 +31,9 @@ void export_mcap(const ExportArgs& a) {
       "wrote %s: %zu frames, %llu messages on %zu topics in %u %s chunks, %.1f MB (the folder: "
       "%.1f MB, %.2fx), %.1f frames/s\n",
       a.output.c_str(), r.frames, static_cast<unsigned long long>(r.totals.messages),
-      r.topics.size(), r.totals.chunks, a.compression.c_str(), mb, folder_mb,
-      folder_mb > 0 ? mb / folder_mb : 0.0, r.seconds > 0 ? r.frames / r.seconds : 0.0);
+      r.topics.size(), r.totals.chunks,
+      options.compression == mcap::Compression::kNone ? "uncompressed" : a.compression.c_str(), mb,
+      folder_mb, folder_mb > 0 ? mb / folder_mb : 0.0, r.seconds > 0 ? r.frames / r.seconds : 0.0);
 }
 
 }  // namespace

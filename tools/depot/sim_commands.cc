@@ -12,7 +12,7 @@
 #include "sim/pipeline/render_dataset.h"
 #include "sim/scenario/scenario_loader.h"
 #include "tools/depot/commands.h"
-#include "tools/depot/paths.h"
+#include "sim/scenario/shipped_scenarios.h"
 
 namespace fs = std::filesystem;
 
@@ -50,7 +50,7 @@ void add_set_option(CLI::App* cmd, std::vector<std::string>& settings) {
 
 void run_render(const RenderArgs& a, const CLI::App& cmd) {
   sim::Scenario scenario =
-      sim::load_scenario(resolve_scenario(a.scenario), parse_overrides(a.settings));
+      sim::load_scenario(sim::resolve_scenario(a.scenario), parse_overrides(a.settings));
   sim::RenderRequest r;
   r.dataset.output = a.output;
   r.dataset.overwrite = a.overwrite;
@@ -91,7 +91,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
 }
 
 void run_list() {
-  const std::string folder = scenarios_folder();
+  const std::string folder = sim::scenarios_folder();
   for (const auto& name : sim::list_scenarios(folder)) {
     sim::Scenario s = sim::load_scenario((fs::path(folder) / (name + ".yaml")).string());
     int living = 0, pushables = 0;
@@ -171,7 +171,7 @@ void register_sim_commands(CLI::App& app) {
   truth->add_flag("-q,--quiet", truth_args->quiet, "No progress bar");
   add_set_option(truth, truth_args->settings);
   truth->callback([truth_args, truth] {
-    sim::Scenario scenario = sim::load_scenario(resolve_scenario(truth_args->scenario),
+    sim::Scenario scenario = sim::load_scenario(sim::resolve_scenario(truth_args->scenario),
                                                 parse_overrides(truth_args->settings));
     sim::RenderRequest r;
     r.dataset.output = truth_args->output;

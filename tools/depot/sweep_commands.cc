@@ -11,7 +11,7 @@
 #include "common/image_size.h"
 #include "common/interrupt.h"
 #include "tools/depot/commands.h"
-#include "tools/depot/paths.h"
+#include "sim/scenario/shipped_scenarios.h"
 #include "tools/harness/schedule/slurm_scheduler.h"
 #include "tools/harness/job/sweep_jobs.h"
 #include "tools/harness/plan/sweep_plan.h"
@@ -44,7 +44,7 @@ struct SweepArgs {
 harness::SweepSpec make_spec(const SweepArgs& a) {
   harness::SweepSpec spec;
   for (const auto& name : a.scenarios) {
-    const std::string path = fs::absolute(resolve_scenario(name)).lexically_normal().string();
+    const std::string path = fs::absolute(sim::resolve_scenario(name)).lexically_normal().string();
     spec.scenarios.push_back({sim::load_scenario(path).name, path});
   }
   for (const auto& v : a.vary) spec.vary.push_back(harness::parse_sweep_parameter(v, "--vary"));

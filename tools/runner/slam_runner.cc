@@ -299,9 +299,18 @@ std::string no_frame_tracked(const RunSummary& summary, const std::string& load_
 
 }  // namespace
 
+PreparedRun prepare_run(const RunOptions& o, const slam::RgbdSequence& sequence) {
+  PreparedRun run;
+  run.settings = load_run_settings(o.input, sequence, run.settings_source);
+  run.rejection = make_rejection(o, run.settings.orb.scale_factor);
+  run.system = std::make_unique<slam::System>(run.settings, run.rejection.filter.get());
+  return run;
+}
+
 RunSummary run_sequence(const RunOptions& o) {
   RunSummary summary;
-  const std::unique_ptr<slam::RgbdSequence> opened = slam::open_sequence(o.input.dataset, o.input.topics);
+  const std::unique_ptr<slam::RgbdSequence> opened =
+      slam::open_sequence(o.input.dataset, o.input.topics);
   slam::RgbdSequence& sequence = *opened;
   const slam::SlamSettings settings = load_run_settings(o.input, sequence, summary.settings_source);
   const size_t n = check_input(o, sequence, settings, summary.settings_source);

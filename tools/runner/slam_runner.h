@@ -7,7 +7,9 @@
 #include <string>
 
 #include "slam/detect/sim_detector_config.h"
+#include "slam/io/rgbd_sequence.h"
 #include "slam/reject/rejection_filter.h"
+#include "slam/system/system.h"
 #include "tools/runner/run_options.h"
 #include "tools/runner/run_summary.h"
 
@@ -44,6 +46,18 @@ struct RejectionSetup {
   std::unique_ptr<slam::RejectionFilter> filter;
 };
 RejectionSetup make_rejection(const RunOptions& options, float scale_factor = 1.2f);
+
+// A run's system before its first frame, for callers that feed frames
+// themselves (the Python module): the settings run_sequence would use on
+// `sequence` (its calibration.yaml or camera_info, then --settings and the
+// run's switches), the rejection of `options`, and the system on them.
+struct PreparedRun {
+  slam::SlamSettings settings;
+  std::string settings_source;
+  RejectionSetup rejection;
+  std::unique_ptr<slam::System> system;
+};
+PreparedRun prepare_run(const RunOptions& options, const slam::RgbdSequence& sequence);
 
 // Tracks the dataset's frames in order; the run's outputs are written by
 // frame observers (frame_observer.h). Everything is checked before the

@@ -1,4 +1,4 @@
-#include "tools/depot/paths.h"
+#include "sim/scenario/shipped_scenarios.h"
 
 #include <cstdlib>
 #include <filesystem>
@@ -8,7 +8,7 @@
 
 namespace fs = std::filesystem;
 
-namespace depot::cli {
+namespace depot::sim {
 
 std::string scenarios_folder() {
   if (const char* env = std::getenv("DEPOT_SCENARIOS")) return env;
@@ -24,4 +24,4 @@ std::string resolve_scenario(const std::string& arg) {
   fail(arg, "scenario not found (neither a file nor a shipped scenario; see `depot sim list`)");
 }
 
-}  // namespace depot::cli
+}  // namespace depot::sim
