@@ -25,9 +25,12 @@
 #include "dataset/ros2/bag_trajectory.h"
 #include "eval/ate.h"
 #include "eval/matched_trajectories.h"
+#include "eval/rpe.h"
 #include "sim/pipeline/render_dataset.h"
 #include "sim/scenario/scenario_loader.h"
 #include "sim/scenario/shipped_scenarios.h"
+#include "sim/world/sensed_frame.h"
+#include "sim/world/simulated_sequence.h"
 #include "slam/io/rgbd_sequence.h"
 #include "slam/track/tracking_state.h"
 #include "tools/bag/bag_export.h"
@@ -127,6 +130,74 @@ py::dict render(const std::string& scenario, const std::string& output, std::opt
   return d;
 }
 
+// A scenario stepped in memory: each frame as the dataset writer would
+// sense it (sim/world/sensed_frame.h), before PNG quantisation.
+class Simulation {
+ public:
+  Simulation(const std::string& scenario, std::optional<int> frames, std::optional<uint64_t> seed,
+             std::optional<int> width, std::optional<double> load, bool ideal,
+             const std::map<std::string, std::string>& set) {
+    std::vector<YamlOverride> overrides;
+    for (const auto& [key, value] : set)
+      overrides.push_back(parse_yaml_override(key + "=" + value, "set"));
+    py::gil_scoped_release release;
+    sim::Scenario sc = sim::load_scenario(sim::resolve_scenario(scenario), overrides);
+    sim::RenderRequest r;
+    r.frames = frames;
+    r.seed = seed;
+    r.width = width;
+    r.dynamic_load = load;
+    r.ideal = ideal;
+    sim::apply_overrides(sc, r);
+    sequence_ = std::make_unique<sim::SimulatedSequence>(sc, sim::GlBackend::kOsMesa);
+  }
+  int frames() const { return sequence_->frame_count(); }
+  py::object step() {
+    sim::RenderedFrame f;
+    sim::FrameTruth t;
+    cv::Mat depth;
+    {
+      py::gil_scoped_release release;
+      if (!sequence_->next(f, t)) return py::none();
+      const sim::Scenario& sc = sequence_->scenario();
+      depth = sim::sense_frame(f, sc, t.capture, t.covered, sim::sensor_seed(sc, t.index));
+    }
+    py::dict d;
+    d["index"] = t.index;
+    d["timestamp"] = t.rgb_timestamp;
+    d["depth_timestamp"] = t.depth_timestamp;
+    d["rgb"] = rgb_array(f.bgr);
+    d["depth"] = plane_array<float>(depth);
+    d["labels"] = plane_array<uint16_t>(f.instance);
+    d["pose"] = pose_array(t.camera);
+    d["covered"] = t.covered;
+    py::list objects;
+    for (const sim::ObjectState& o : t.objects) {
+      py::dict od;
+      od["id"] = o.id;
+      od["pose"] = pose_array(o.pose);
+      od["moving"] = o.moving;
+      objects.append(od);
+    }
+    d["objects"] = objects;
+    return d;
+  }
+  py::dict camera() const {
+    const sim::CameraIntrinsics& c = sequence_->scenario().camera;
+    py::dict d;
+    d["width"] = c.width;
+    d["height"] = c.height;
+    d["fx"] = c.f;
+    d["fy"] = c.focal_y();
+    d["cx"] = c.cx;
+    d["cy"] = c.cy;
+    return d;
+  }
+
+ private:
+  std::unique_ptr<sim::SimulatedSequence> sequence_;
+};
+
 // ---- sequences --------------------------------------------------------------
 
 class Sequence {
@@ -205,6 +276,12 @@ class Sequence {
 
 // ---- SLAM -------------------------------------------------------------------
 
+std::vector<std::string> states_of(const std::vector<slam::StampedFrameState>& states) {
+  std::vector<std::string> out;
+  for (const slam::StampedFrameState& s : states) out.push_back(slam::frame_state_name(s.state));
+  return out;
+}
+
 runner::RunOptions run_options(const std::string& dataset, const std::string& mode,
                                const std::string& detector, const std::string& mapping) {
   if (mapping != "sync" && mapping != "threaded")
@@ -270,12 +347,7 @@ class Slam {
     }
     return stamped_arrays(poses);
   }
-  std::vector<std::string> states() const {
-    std::vector<std::string> out;
-    for (const slam::StampedFrameState& s : run_.system->frame_states())
-      out.push_back(slam::frame_state_name(s.state));
-    return out;
-  }
+  std::vector<std::string> states() const { return states_of(run_.system->frame_states()); }
   void finish() {
     py::gil_scoped_release release;
     run_.system->finish();
@@ -313,6 +385,14 @@ py::dict slam_run(const std::string& dataset, const std::string& output, const s
   d["tracked"] = s.tracked;
   d["keyframes"] = s.keyframes;
   d["median_ms"] = s.median_ms;
+  d["states"] = states_of(s.frame_states);
+  if (s.scored) {  // a simulated dataset with a rejection mode: scored against its labels
+    // As `depot slam run` prints them: precision with the points on a
+    // mover's boundary left out, and with them counted as static.
+    d["rejection_precision"] = s.score.precision_without_boundary();
+    d["rejection_precision_boundary_static"] = s.score.precision();
+    d["rejection_recall"] = s.score.recall();
+  }
   const py::tuple arrays = Slam::stamped_arrays(s.trajectory);
   d["timestamps"] = arrays[0];
   d["poses"] = arrays[1];
@@ -359,6 +439,30 @@ py::dict ate(const py::object& reference, const py::object& estimate, double max
   return d;
 }
 
+py::dict rpe(const py::object& reference, const py::object& estimate, double delta,
+             const std::string& unit, double max_dt) {
+  if (unit != "s" && unit != "f")
+    fail("unit", "'" + unit + "' is neither s (seconds) nor f (frames)");
+  AssociationOptions assoc;
+  assoc.max_difference = max_dt;
+  eval::PairSelection selection;
+  selection.delta = delta;
+  selection.unit = unit == "s" ? eval::DeltaUnit::kSeconds : eval::DeltaUnit::kFrames;
+  const eval::RpeResult r = eval::compute_rpe(
+      eval::match_trajectories(poses_from(reference, "reference"), poses_from(estimate, "estimate"),
+                               assoc, "reference", "estimate"),
+      selection);
+  py::dict d;
+  d["translation_rmse"] = r.translation_statistics.rmse;
+  d["rotation_rmse_deg"] = r.rotation_statistics.rmse;
+  d["pairs"] = r.translation_statistics.count;
+  d["translation"] =
+      py::array_t<double>(static_cast<py::ssize_t>(r.translation.size()), r.translation.data());
+  d["rotation_deg"] =
+      py::array_t<double>(static_cast<py::ssize_t>(r.rotation.size()), r.rotation.data());
+  return d;
+}
+
 py::dict export_mcap(const std::string& dataset, const std::string& output,
                      const std::string& compression) {
   bag::BagExportOptions options;
@@ -389,6 +493,18 @@ PYBIND11_MODULE(depot, m) {
         py::arg("ideal") = false, py::arg("overwrite") = false,
         py::arg("set") = std::map<std::string, std::string>{}, py::arg("progress") = false,
         "Render a scenario (shipped name or YAML path) to a dataset folder; returns a summary.");
+  py::class_<Simulation>(m, "Simulation", "A scenario stepped frame by frame in memory")
+      .def(py::init<const std::string&, std::optional<int>, std::optional<uint64_t>,
+                    std::optional<int>, std::optional<double>, bool,
+                    const std::map<std::string, std::string>&>(),
+           py::arg("scenario"), py::arg("frames") = py::none(), py::arg("seed") = py::none(),
+           py::arg("width") = py::none(), py::arg("load") = py::none(), py::arg("ideal") = false,
+           py::arg("set") = std::map<std::string, std::string>{})
+      .def_property_readonly("frames", &Simulation::frames)
+      .def_property_readonly("camera", &Simulation::camera)
+      .def("step", &Simulation::step,
+           "The next frame (rgb, depth float32 m as sensed, labels uint16, pose (4,4), "
+           "objects with poses and moving flags, timestamps), or None after the last");
   py::class_<Sequence>(m, "Sequence", "A TUM folder or a ROS 2 bag, frame by frame as arrays")
       .def(py::init<const std::string&, const std::string&, const std::string&,
                     const std::string&>(),
@@ -416,6 +532,9 @@ PYBIND11_MODULE(depot, m) {
         "`depot slam run` in this process; returns a summary with the trajectory as arrays");
   m.def("ate", &ate, py::arg("reference"), py::arg("estimate"), py::arg("max_dt") = 0.02,
         "ATE (TUM/evo): each of reference and estimate a TUM file, a bag, or (timestamps, poses)");
+  m.def("rpe", &rpe, py::arg("reference"), py::arg("estimate"), py::arg("delta") = 1.0,
+        py::arg("unit") = "s", py::arg("max_dt") = 0.02,
+        "RPE (TUM/evo) over pairs `delta` seconds (unit s) or frames (unit f) apart");
   m.def("export_mcap", &export_mcap, py::arg("dataset"), py::arg("output"),
         py::arg("compression") = "zstd", "Write a dataset as a ROS 2 bag (MCAP)");
 }

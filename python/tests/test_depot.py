@@ -1,5 +1,6 @@
 # `import depot`: render to arrays, SLAM frame by frame, ATE, bags, and bad
 # input as Python exceptions carrying the one-line messages.
+import json
 import os
 import subprocess
 
@@ -51,6 +52,24 @@ def test_full_frame_by_frame_gives_the_ate_of_depot_slam_run(walking, scratch, d
     # The CLI's file holds nine digits: the same run to that precision.
     assert ours["rmse"] == pytest.approx(theirs["rmse"], abs=1e-8)
     assert ours["rmse"] < 0.05
+    rpe = depot.rpe(os.path.join(walking, "groundtruth.txt"), (stamps, poses), delta=5, unit="f")
+    report = os.path.join(scratch, "rpe.json")
+    subprocess.run([depot_program, "eval", "rpe", os.path.join(walking, "groundtruth.txt"), out,
+                    "--delta", "5", "--delta-unit", "f", "--json", report], check=True,
+                   stdout=subprocess.DEVNULL)
+    with open(report) as f:
+        cli = json.load(f)
+    assert rpe["pairs"] == cli["pairs"] == 25
+    assert rpe["translation_rmse"] == pytest.approx(cli["translation"]["statistics"]["rmse"], abs=1e-8)
+
+
+def test_slam_run_scores_rejection_on_a_simulated_dataset(walking):
+    run = depot.slam_run(walking, mode="full", detector="darknet")
+    assert run["tracked"] >= 28 and len(run["states"]) == 30
+    # Scored against the labels as `depot slam run` scores it (0.645 / 0.876 when written).
+    assert run["rejection_recall"] > 0.7
+    assert run["rejection_precision"] > 0.5
+    assert run["rejection_precision_boundary_static"] < run["rejection_precision"]
 
 
 def test_slam_run_and_bags(walking, scratch):
@@ -87,3 +106,22 @@ def test_bad_input_is_one_clear_exception(walking, scratch):
         depot.ate(os.path.join(walking, "groundtruth.txt"), (np.zeros(3), np.zeros((3, 3, 3))))
     with pytest.raises(IndexError):
         depot.Sequence(walking)[30]
+
+
+def test_a_scenario_stepped_in_memory_is_the_rendered_dataset(walking):
+    sim = depot.Simulation("depot_walking_xyz", frames=30, seed=1, width=160)
+    assert sim.frames == 30 and sim.camera["width"] == 160
+    seq = depot.Sequence(walking)
+    for i in range(3):
+        f = sim.step()
+        g = seq[i]
+        assert f["timestamp"] == g["timestamp"]
+        np.testing.assert_array_equal(f["rgb"], g["rgb"])  # colour is stored losslessly
+        np.testing.assert_array_equal(f["labels"], g["labels"])
+        np.testing.assert_allclose(f["pose"], g["pose"], atol=1e-6)
+        # The dataset stores depth in steps of 1/5000 m.
+        assert np.abs(f["depth"] - g["depth"]).max() <= 0.5 / 5000 + 1e-6
+        assert any(o["moving"] for o in f["objects"])
+    for _ in range(27):
+        assert sim.step() is not None
+    assert sim.step() is None

@@ -20,6 +20,7 @@
 #include "sim/sensor/colour_pipeline.h"
 #include "sim/sensor/depth_artefacts.h"
 #include "sim/sensor/kinect_model.h"
+#include "sim/world/sensed_frame.h"
 
 namespace fs = std::filesystem;
 
@@ -160,17 +161,8 @@ void DatasetWriter::worker() {
 
 void DatasetWriter::write_job(Job& job, WriterTimings& timings) {
   auto t0 = std::chrono::steady_clock::now();
-  const SensorSpec& sensor = scenario_.sensor;
-  const uint64_t seed = derive_seed(scenario_.seed, 0x5e9, static_cast<uint64_t>(job.index));
-  cv::Mat depth = job.frame.depth;
-  // A covered camera sees exactly nothing: black and no depth, not noise.
-  if (!sensor.ideal && !job.covered) {
-    // Artefacts read the exact colour (dark surfaces), so before its noise.
-    apply_depth_artefacts(job.frame.depth, job.frame.bgr, sensor, seed);
-    depth = misregister_depth(apply_depth_model(job.frame.depth, sensor, scenario_.camera.f, seed),
-                              sensor);
-    apply_colour_sensor(job.frame.bgr, sensor, job.capture, derive_seed(seed, 1));
-  }
+  const cv::Mat depth = sense_frame(job.frame, scenario_, job.capture, job.covered,
+                                    sensor_seed(scenario_, job.index));
   cv::Mat depth16 = depth_to_u16(depth, scenario_.camera.depth_factor);
   auto t1 = std::chrono::steady_clock::now();
   const fs::path root = dir_->path();
