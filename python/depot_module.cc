@@ -10,11 +10,18 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
 #include <filesystem>
+#include <fstream>
 #include <map>
 
 #include <opencv2/imgproc.hpp>
 
+#include "common/child_process.h"
 #include "common/error.h"
 #include "common/tum_association.h"
 #include "common/tum_io.h"
@@ -34,6 +41,8 @@
 #include "slam/io/rgbd_sequence.h"
 #include "slam/track/tracking_state.h"
 #include "tools/bag/bag_export.h"
+#include "tools/harness/plan/run_record.h"
+#include "tools/harness/plan/sweep_plan.h"
 #include "tools/runner/slam_runner.h"
 
 namespace py = pybind11;
@@ -463,6 +472,66 @@ py::dict rpe(const py::object& reference, const py::object& estimate, double del
   return d;
 }
 
+// ---- sweeps -----------------------------------------------------------------
+
+// `depot sweep run` as the program runs it (its jobs are processes of the
+// program); the run records as dicts (tools/harness/plan/run_record.h).
+py::list sweep(const std::vector<std::string>& scenarios, const std::string& output,
+               const std::map<std::string, std::vector<std::string>>& vary,
+               const std::map<std::string, std::string>& set, const std::vector<std::string>& modes,
+               int seeds, int frames, int width, int workers, const std::string& program) {
+  std::vector<std::string> argv = {program.empty() ? DEPOT_PROGRAM : program, "sweep", "run"};
+  argv.insert(argv.end(), scenarios.begin(), scenarios.end());
+  argv.insert(argv.end(), {"-o", output, "-q", "--seeds", std::to_string(seeds), "--frames",
+                           std::to_string(frames), "--width", std::to_string(width), "-j",
+                           std::to_string(workers)});
+  for (const auto& [key, levels] : vary) {
+    std::string joined;
+    for (const std::string& l : levels) joined += (joined.empty() ? "" : ",") + l;
+    argv.insert(argv.end(), {"--vary", key + "=" + joined});
+  }
+  for (const auto& [key, value] : set) argv.insert(argv.end(), {"--set", key + "=" + value});
+  if (!modes.empty()) {
+    std::string joined;
+    for (const std::string& m : modes) joined += (joined.empty() ? "" : ",") + m;
+    argv.insert(argv.end(), {"--modes", joined});
+  }
+  const std::string log =
+      (fs::temp_directory_path() / ("depot_sweep_" + std::to_string(::getpid()) + ".log")).string();
+  int status = 0;
+  {
+    py::gil_scoped_release release;
+    ChildSpec spec;
+    spec.argv = argv;
+    spec.log_path = log;
+    const pid_t pid = start_child(spec);
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+  }
+  std::ifstream in(log);
+  std::string line, last_error;
+  while (std::getline(in, line))
+    if (line.rfind("depot: error: ", 0) == 0) last_error = line.substr(14);
+  in.close();
+  std::error_code ec;
+  fs::remove(log, ec);
+  if (exit_code_of(status) != 0)
+    throw Error(last_error.empty()
+                    ? "depot sweep run failed (exit " + std::to_string(exit_code_of(status)) + ")"
+                    : last_error);
+  const harness::SweepLayout layout{output};
+  py::list records;
+  const py::object loads = py::module_::import("json").attr("loads");
+  std::vector<std::string> ids;
+  for (const auto& e : fs::directory_iterator(fs::path(output) / "runs", ec))
+    if (fs::is_regular_file(layout.run_record(e.path().filename().string()), ec))
+      ids.push_back(e.path().filename().string());
+  std::sort(ids.begin(), ids.end());
+  for (const std::string& id : ids)
+    records.append(loads(harness::to_json(harness::read_run_record(layout.run_record(id))).dump()));
+  return records;
+}
+
 py::dict export_mcap(const std::string& dataset, const std::string& output,
                      const std::string& compression) {
   bag::BagExportOptions options;
@@ -535,6 +604,14 @@ PYBIND11_MODULE(depot, m) {
   m.def("rpe", &rpe, py::arg("reference"), py::arg("estimate"), py::arg("delta") = 1.0,
         py::arg("unit") = "s", py::arg("max_dt") = 0.02,
         "RPE (TUM/evo) over pairs `delta` seconds (unit s) or frames (unit f) apart");
+  m.def("sweep", &sweep, py::arg("scenarios"), py::arg("output"),
+        py::arg("vary") = std::map<std::string, std::vector<std::string>>{},
+        py::arg("set") = std::map<std::string, std::string>{},
+        py::arg("modes") = std::vector<std::string>{}, py::arg("seeds") = 3,
+        py::arg("frames") = 300, py::arg("width") = 640, py::arg("workers") = 2,
+        py::arg("program") = "",
+        "`depot sweep run` (the program built beside this module, or `program`); returns the "
+        "run records (ATE, RPE, tracked share, rejection scores per scenario, level, seed, mode)");
   m.def("export_mcap", &export_mcap, py::arg("dataset"), py::arg("output"),
         py::arg("compression") = "zstd", "Write a dataset as a ROS 2 bag (MCAP)");
 }

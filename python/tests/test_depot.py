@@ -125,3 +125,13 @@ def test_a_scenario_stepped_in_memory_is_the_rendered_dataset(walking):
     for _ in range(27):
         assert sim.step() is not None
     assert sim.step() is None
+
+
+def test_a_sweep_returns_its_run_records(scratch):
+    records = depot.sweep(["depot_static"], os.path.join(scratch, "sweep"), modes=["orb"],
+                          seeds=1, frames=12, width=160, vary={"light": ["1", "0.5"]})
+    assert len(records) == 2
+    assert {r["mode"] for r in records} == {"orb"}
+    assert all(r["ok"] and r["tracked"] == 12 for r in records)
+    with pytest.raises(depot.Error, match=r"--vary"):
+        depot.sweep(["depot_static"], os.path.join(scratch, "sweep2"), vary={"no_such_key": ["1"]})
