@@ -5,6 +5,7 @@
 // on the bag equals the run on the folder; a bag @mcap/core wrote is read
 // by ours; damaged and unusable bags are one error line each.
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -26,6 +27,7 @@
 #include "dataset/ros2/bag_layout.h"
 #include "dataset/ros2/messages.h"
 #include "slam/io/mcap_sequence.h"
+#include "slam/io/settings.h"
 #include "slam/io/tum_sequence.h"
 #include "tests/support/cli_checks.h"
 #include "tests/support/dataset_reader.h"
@@ -84,14 +86,21 @@ uint64_t stamp_ns(const json& header) {
          header["stamp"]["nanosec"].get<uint64_t>();
 }
 
-// 20 walking_xyz frames at 160x120, and their bag.
+// 20 walking_xyz frames at 160x120 (DEPOT_BAG_TEST_FRAMES / _WIDTH change
+// that: 300 and 640 is the full check), and their bag.
+int env_or(const char* name, int fallback) {
+  const char* v = std::getenv(name);
+  return v ? std::atoi(v) : fallback;
+}
+const int kFrames = env_or("DEPOT_BAG_TEST_FRAMES", 20);
 struct Exported {
   std::string dataset, bag;
 };
 const Exported& exported() {
   static const Exported e = [] {
-    Exported x{render_small({"depot_walking_xyz", 20, 160, false, 1}),
-               temp_path("walking") + ".mcap"};
+    Exported x{
+        render_small({"depot_walking_xyz", kFrames, env_or("DEPOT_BAG_TEST_WIDTH", 160), false, 1}),
+        temp_path("walking") + ".mcap"};
     const DepotResult r = depot("export mcap " + x.dataset + " -o " + x.bag + " -q");
     EXPECT_EQ(r.code, 0) << r.output;
     return x;
@@ -153,7 +162,8 @@ TEST(McapBag, IndependentReadersDecodeEveryMessageAsTheDatasetHasIt) {
       EXPECT_EQ(m["width"].get<int>(), bgr.cols);
       EXPECT_EQ(m["height"].get<int>(), bgr.rows);
     } else if (topic == ros2::kColourInfoTopic) {
-      EXPECT_EQ(m["k"][0].get<double>(), 539.2 / 4);  // the 160-wide render's fx
+      EXPECT_EQ(m["k"][0].get<double>(),
+                slam::load_settings(e.dataset + "/calibration.yaml").camera.fx);
       EXPECT_EQ(m["distortion_model"], "plumb_bob");
     } else if (topic == ros2::kTfTopic || topic == ros2::kTruthPoseTopic) {
       const json& at = topic == ros2::kTfTopic ? m["transforms"][0]["transform"] : m["pose"];
@@ -194,7 +204,7 @@ TEST(McapBag, IndependentReadersDecodeEveryMessageAsTheDatasetHasIt) {
   for (const char* topic :
        {ros2::kColourTopic, ros2::kDepthTopic, ros2::kColourInfoTopic, ros2::kDepthInfoTopic,
         ros2::kLabelsTopic, ros2::kBoxesTopic, ros2::kObjectsTopic})
-    EXPECT_EQ(counts[topic], 20) << topic;
+    EXPECT_EQ(counts[topic], kFrames) << topic;
   EXPECT_EQ(counts[ros2::kTfTopic], static_cast<int>(truth.size()));
   EXPECT_EQ(counts[ros2::kTfStaticTopic], 1);
   EXPECT_EQ(counts[ros2::kTruthPathTopic], 1);
