@@ -23,6 +23,7 @@
 
 #include "common/child_process.h"
 #include "common/error.h"
+#include "common/mutex.h"
 #include "common/tum_association.h"
 #include "common/tum_io.h"
 #include "common/yaml_overrides.h"
@@ -167,6 +168,7 @@ class Simulation {
     cv::Mat depth;
     {
       py::gil_scoped_release release;
+      MutexLock lock(mutex_);
       if (!sequence_->next(f, t)) return py::none();
       const sim::Scenario& sc = sequence_->scenario();
       depth = sim::sense_frame(f, sc, t.capture, t.covered, sim::sensor_seed(sc, t.index));
@@ -204,6 +206,9 @@ class Simulation {
   }
 
  private:
+  // Steps take turns; the GL context is the constructing thread's, so step
+  // from the thread that made the Simulation.
+  Mutex mutex_;
   std::unique_ptr<sim::SimulatedSequence> sequence_;
 };
 
@@ -240,6 +245,7 @@ class Sequence {
     cv::Mat bgr, depth;
     {
       py::gil_scoped_release release;
+      MutexLock lock(mutex_);  // a bag's reader caches a chunk: one reader at a time
       seq_->load(static_cast<size_t>(i), bgr, depth);
     }
     const double t = seq_->timestamp(static_cast<size_t>(i));
@@ -277,6 +283,7 @@ class Sequence {
  private:
   static std::string key(double t) { return dataset::format_timestamp(t); }
   std::string path_;
+  mutable Mutex mutex_;  // Python threads may share a Sequence; loads take turns
   std::unique_ptr<slam::RgbdSequence> seq_;
   std::map<std::string, Pose> truth_;
   std::map<std::string, std::string> labels_;
@@ -321,6 +328,7 @@ class Slam {
     slam::TrackResult r;
     {
       py::gil_scoped_release release;
+      MutexLock lock(mutex_);  // the system is fed by one thread at a time
       r = run_.system->track(bgr, d, timestamp);
     }
     py::dict out;
@@ -352,13 +360,18 @@ class Slam {
     std::vector<StampedPose> poses;
     {
       py::gil_scoped_release release;
+      MutexLock lock(mutex_);
       poses = run_.system->trajectory();
     }
     return stamped_arrays(poses);
   }
-  std::vector<std::string> states() const { return states_of(run_.system->frame_states()); }
+  std::vector<std::string> states() const {
+    MutexLock lock(mutex_);
+    return states_of(run_.system->frame_states());
+  }
   void finish() {
     py::gil_scoped_release release;
+    MutexLock lock(mutex_);
     run_.system->finish();
   }
   static py::tuple stamped_arrays(const std::vector<StampedPose>& poses) {
@@ -376,6 +389,9 @@ class Slam {
 
  private:
   runner::RunOptions options_;
+  // Python threads may share a Slam with the GIL released while it tracks:
+  // the system's methods take turns (it is fed by one thread, system.h).
+  mutable Mutex mutex_;
   runner::PreparedRun run_;
 };
 
