@@ -2,6 +2,7 @@
 
 #include <iomanip>
 #include <sstream>
+#include <utility>
 
 #include "common/error.h"
 #include "common/image_size.h"
@@ -11,21 +12,38 @@
 
 namespace depot::dataset {
 
+namespace {
+
+// The camera keys' accepted ranges, for calibration.yaml and for a camera
+// stated by its intrinsics alike.
+struct Range {
+  const char* key;
+  double lo, hi;
+};
+constexpr Range kFx{"fx", 1, 1e5}, kFy{"fy", 1, 1e5}, kCx{"cx", 0, 8192}, kCy{"cy", 0, 8192};
+constexpr Range kK1{"k1", -10, 10}, kK2{"k2", -10, 10}, kP1{"p1", -1, 1}, kP2{"p2", -1, 1},
+    kK3{"k3", -10, 10};
+
+}  // namespace
+
 CameraCalibration read_camera_sections(const YAML::Node& root, const std::string& path,
                                        const CameraCalibration& defaults) {
   CameraCalibration c = defaults;
   const YamlFields cam(root["camera"], path, "camera");
   c.width = cam.number<int>("width", c.width, kMinImageSide, kMaxImageSide);
   c.height = cam.number<int>("height", c.height, kMinImageSide, kMaxImageSide);
-  c.fx = cam.number("fx", c.fx, 1, 1e5);
-  c.fy = cam.number("fy", c.fy, 1, 1e5);
-  c.cx = cam.number("cx", c.cx, 0, 8192);
-  c.cy = cam.number("cy", c.cy, 0, 8192);
-  c.lens.k1 = cam.number("k1", c.lens.k1, -10, 10);
-  c.lens.k2 = cam.number("k2", c.lens.k2, -10, 10);
-  c.lens.p1 = cam.number("p1", c.lens.p1, -1, 1);
-  c.lens.p2 = cam.number("p2", c.lens.p2, -1, 1);
-  c.lens.k3 = cam.number("k3", c.lens.k3, -10, 10);
+  const auto number = [&cam](const Range& r, double fallback) {
+    return cam.number(r.key, fallback, r.lo, r.hi);
+  };
+  c.fx = number(kFx, c.fx);
+  c.fy = number(kFy, c.fy);
+  c.cx = number(kCx, c.cx);
+  c.cy = number(kCy, c.cy);
+  c.lens.k1 = number(kK1, c.lens.k1);
+  c.lens.k2 = number(kK2, c.lens.k2);
+  c.lens.p1 = number(kP1, c.lens.p1);
+  c.lens.p2 = number(kP2, c.lens.p2);
+  c.lens.k3 = number(kK3, c.lens.k3);
   // Absent, the baseline keeps the defaults' bf under the new fx.
   c.baseline = cam.number("baseline", defaults.bf / c.fx, 0.001, 1.0);
   c.bf = c.baseline * c.fx;
@@ -39,22 +57,17 @@ CameraCalibration calibration_of_intrinsics(const CameraCalibration& defaults, i
                                             int height, double fx, double fy, double cx, double cy,
                                             const LensCoefficients& lens,
                                             const std::string& where) {
-  const auto check = [&where](const char* name, double v, double lo, double hi) {
-    if (!(v >= lo && v <= hi))
-      fail(where, std::string(name) + " " + shortest_number(v) + " is outside [" +
-                      shortest_number(lo) + ", " + shortest_number(hi) + "]");
+  const auto check = [&where](const Range& r, double v) {
+    if (!(v >= r.lo && v <= r.hi))
+      fail(where, std::string(r.key) + " " + shortest_number(v) + " is outside [" +
+                      shortest_number(r.lo) + ", " + shortest_number(r.hi) + "]");
   };
-  check("width", width, kMinImageSide, kMaxImageSide);
-  check("height", height, kMinImageSide, kMaxImageSide);
-  check("fx", fx, 1, 1e5);
-  check("fy", fy, 1, 1e5);
-  check("cx", cx, 0, 8192);
-  check("cy", cy, 0, 8192);
-  check("k1", lens.k1, -10, 10);
-  check("k2", lens.k2, -10, 10);
-  check("p1", lens.p1, -1, 1);
-  check("p2", lens.p2, -1, 1);
-  check("k3", lens.k3, -10, 10);
+  check({"width", kMinImageSide, kMaxImageSide}, width);
+  check({"height", kMinImageSide, kMaxImageSide}, height);
+  const std::pair<Range, double> values[] = {{kFx, fx},      {kFy, fy},      {kCx, cx},
+                                             {kCy, cy},      {kK1, lens.k1}, {kK2, lens.k2},
+                                             {kP1, lens.p1}, {kP2, lens.p2}, {kK3, lens.k3}};
+  for (const auto& [range, value] : values) check(range, value);
   CameraCalibration c = defaults;
   c.width = width;
   c.height = height;

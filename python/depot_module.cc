@@ -110,27 +110,40 @@ cv::Mat depth_from(const py::array& a, const cv::Size& size) {
 
 // ---- rendering --------------------------------------------------------------
 
+// A scenario with the keyword arguments render() and Simulation share, as
+// `depot sim render` applies its options.
+struct ScenarioChoice {
+  sim::Scenario scenario;
+  sim::RenderRequest request;
+};
+ScenarioChoice choose_scenario(const std::string& name, std::optional<int> frames,
+                               std::optional<uint64_t> seed, std::optional<int> width,
+                               std::optional<double> load, bool ideal,
+                               const std::map<std::string, std::string>& set) {
+  std::vector<YamlOverride> overrides;
+  for (const auto& [key, value] : set)
+    overrides.push_back(parse_yaml_override(key + "=" + value, "set"));
+  ScenarioChoice c{sim::load_scenario(sim::resolve_scenario(name), overrides), {}};
+  c.request.frames = frames;
+  c.request.seed = seed;
+  c.request.width = width;
+  c.request.dynamic_load = load;
+  c.request.ideal = ideal;
+  return c;
+}
+
 py::dict render(const std::string& scenario, const std::string& output, std::optional<int> frames,
                 std::optional<uint64_t> seed, std::optional<int> width, std::optional<double> load,
                 bool ideal, bool overwrite, const std::map<std::string, std::string>& set,
                 bool progress) {
-  std::vector<YamlOverride> overrides;
-  for (const auto& [key, value] : set)
-    overrides.push_back(parse_yaml_override(key + "=" + value, "set"));
   sim::RenderSummary s;
   {
     py::gil_scoped_release release;
-    const sim::Scenario sc = sim::load_scenario(sim::resolve_scenario(scenario), overrides);
-    sim::RenderRequest r;
-    r.dataset.output = output;
-    r.dataset.overwrite = overwrite;
-    r.frames = frames;
-    r.seed = seed;
-    r.width = width;
-    r.dynamic_load = load;
-    r.ideal = ideal;
-    r.progress = progress;
-    s = sim::render_dataset(sc, r);
+    ScenarioChoice c = choose_scenario(scenario, frames, seed, width, load, ideal, set);
+    c.request.dataset.output = output;
+    c.request.dataset.overwrite = overwrite;
+    c.request.progress = progress;
+    s = sim::render_dataset(c.scenario, c.request);
   }
   py::dict d;
   d["frames"] = s.frames;
@@ -147,18 +160,10 @@ class Simulation {
   Simulation(const std::string& scenario, std::optional<int> frames, std::optional<uint64_t> seed,
              std::optional<int> width, std::optional<double> load, bool ideal,
              const std::map<std::string, std::string>& set) {
-    std::vector<YamlOverride> overrides;
-    for (const auto& [key, value] : set)
-      overrides.push_back(parse_yaml_override(key + "=" + value, "set"));
     py::gil_scoped_release release;
-    sim::Scenario sc = sim::load_scenario(sim::resolve_scenario(scenario), overrides);
-    sim::RenderRequest r;
-    r.frames = frames;
-    r.seed = seed;
-    r.width = width;
-    r.dynamic_load = load;
-    r.ideal = ideal;
-    sim::apply_overrides(sc, r);
+    ScenarioChoice c = choose_scenario(scenario, frames, seed, width, load, ideal, set);
+    sim::Scenario& sc = c.scenario;
+    sim::apply_overrides(sc, c.request);
     sequence_ = std::make_unique<sim::SimulatedSequence>(sc, sim::GlBackend::kOsMesa);
   }
   int frames() const { return sequence_->frame_count(); }

@@ -43,30 +43,21 @@ using ::testing::HasSubstr;
 
 const std::string kCheckDir = std::string(DEPOT_BINARY_DIR) + "/mcap-check";
 
-// Runs a shell command; its exit code and standard output.
-std::pair<int, std::string> run(const std::string& command) {
-  std::string out;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return {-1, ""};
-  char buffer[1 << 16];
-  size_t n;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) out.append(buffer, n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
-
 // The pinned npm packages in the build folder, installed once (a lock keeps
 // two test processes from installing at the same time).
 void install_readers() {
-  const auto [code, out] = run("cd " + kCheckDir +
-                               " && flock .install.lock sh -c 'test -d node_modules/@mcap/core || "
-                               "npm ci --no-audit --no-fund --loglevel=error' 2>&1");
+  std::string out;
+  const int code = run_command("cd " + kCheckDir +
+                                   " && flock .install.lock sh -c 'test -d node_modules/@mcap/core "
+                                   "|| npm ci --no-audit --no-fund --loglevel=error'",
+                               &out);
   ASSERT_EQ(code, 0) << "npm ci of tests/mcap/package-lock.json failed:\n" << out;
 }
 
 std::vector<json> describe(const std::string& bag) {
   install_readers();
-  const auto [code, out] = run("node " + kCheckDir + "/check_bag.mjs describe " + bag + " 2>&1");
+  std::string out;
+  const int code = run_command("node " + kCheckDir + "/check_bag.mjs describe " + bag, &out);
   EXPECT_EQ(code, 0) << out.substr(0, 2000);
   std::vector<json> lines;
   std::istringstream in(out);
@@ -237,7 +228,8 @@ TEST(McapBag, SlamOnTheBagEqualsSlamOnTheFolder) {
 TEST(McapBag, ABagWrittenByMcapCoreIsReadByOurs) {
   install_readers();
   const std::string bag = temp_path("foreign") + ".mcap";
-  const auto [code, out] = run("node " + kCheckDir + "/check_bag.mjs write " + bag + " 2>&1");
+  std::string out;
+  const int code = run_command("node " + kCheckDir + "/check_bag.mjs write " + bag, &out);
   ASSERT_EQ(code, 0) << out;
   slam::BagTopics topics;
   topics.colour = "/cam/rgb";

@@ -250,10 +250,7 @@ std::string without_msg(const std::string& type) {
 
 Time header_stamp(const std::string& cdr, const std::string& where) {
   CdrReader r(cdr, where);
-  Time t;
-  t.sec = r.i32();
-  t.nanosec = r.u32();
-  return t;
+  return take_header(r).stamp;
 }
 
 Image decode_image(const std::string& cdr, const std::string& where) {

@@ -132,13 +132,17 @@ RejectionSetup make_rejection(const RunOptions& options, float scale_factor) {
 
 namespace {
 
+// Where a run's camera came from when neither the recording nor --settings
+// states one.
+constexpr const char* kDefaultCameraSource = "the TUM fr3 Kinect defaults (no calibration.yaml)";
+
 // The settings of a run: the dataset's calibration.yaml (else the TUM fr3
 // Kinect defaults), then --settings, then the run's own switches; `source`
 // says where the camera came from, for errors and the summary.
 slam::SlamSettings load_run_settings(const RunInput& in, const slam::RgbdSequence& sequence,
                                      std::string& source) {
   slam::SlamSettings settings;
-  source = "the TUM fr3 Kinect defaults (no calibration.yaml)";
+  source = kDefaultCameraSource;
   if (!sequence.calibration_path().empty()) {
     settings = slam::load_settings(sequence.calibration_path(), settings);
     source = sequence.calibration_path();
@@ -168,8 +172,7 @@ size_t check_input(const RunOptions& o, slam::RgbdSequence& sequence,
     fail(o.input.dataset, "has " + std::to_string(sequence.size()) + " frames; --frames asks for " +
                               std::to_string(*frames));
   check_image_size(sequence, settings, settings_source);
-  if (sequence.calibration_path().empty() && o.input.settings.empty() &&
-      !sequence.recorded_camera(slam::camera_calibration_of(settings)))
+  if (settings_source == kDefaultCameraSource)
     std::fprintf(stderr,
                  "depot: warning: %s: no calibration.yaml; using the TUM fr3 Kinect intrinsics "
                  "(%dx%d, fx %.1f fy %.1f cx %.1f cy %.1f; give --settings to choose others)\n",
