@@ -8,6 +8,7 @@
 #include <cstdlib>
 
 #include "common/tum_io.h"
+#include "dataset/test_folder.h"
 #include "eval/ate.h"
 #include "eval/improvement.h"
 #include "eval/matched_trajectories.h"
@@ -117,6 +118,37 @@ TEST_P(ScenarioRegression, SystemsUnderTestMeetTheirBounds) {
     EXPECT_GE(share, bounds["tracked_share_min"].as<double>()) << mode << " tracked share";
   }
 }
+
+// Generated halls (#27): each seed draws its own hall for
+// depot_procedural_patrol; every one renders, is tracked by orb, full and
+// masked within the bounds, and its dataset holds the hall it was drawn.
+class ProceduralHalls : public ::testing::TestWithParam<int> {};
+
+TEST_P(ProceduralHalls, EachSeedsHallRendersAndIsTrackedWithinTheBounds) {
+  const YAML::Node b = YAML::LoadFile(kBounds)["procedural_halls"];
+  ASSERT_TRUE(b) << "no procedural_halls bounds in " << kBounds;
+  const std::string scenario = b["scenario"].as<std::string>();
+  const int frames = b["frames"].as<int>();
+  const std::string data = render_small(
+      {scenario, frames, b["width"].as<int>(), false, static_cast<uint64_t>(GetParam())});
+  // The hall it was drawn in, written out with the dataset (its seed named).
+  const std::string hall = dataset::testing::read_text(data, "scene.yaml");
+  EXPECT_NE(hall.find("procedural hall (world seed " + std::to_string(GetParam()) + ")"),
+            std::string::npos);
+  for (const auto& [mode, key] :
+       {std::pair{slam::RejectionMode::kOrb, "orb"}, std::pair{slam::RejectionMode::kFull, "full"},
+        std::pair{slam::RejectionMode::kMasked, "masked"}}) {
+    const SlamOutcome run = run_slam_mode(data, mode, false);
+    std::printf("%s seed %d %s: ATE %.4f m, tracked %.1f %%, lost %d\n", scenario.c_str(),
+                GetParam(), key, run.ate_rmse, 100 * run.tracked_share(), run.lost);
+    EXPECT_LT(run.ate_rmse, b[key]["ate_max"].as<double>()) << key << " ATE RMSE";
+    EXPECT_GE(run.tracked_share(), b["tracked_share_min"].as<double>()) << key << " tracked";
+    EXPECT_EQ(run.trajectory_size, run.tracked);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, ProceduralHalls, ::testing::Range(1, 6),
+                         [](const auto& info) { return "seed_" + std::to_string(info.param); });
 
 INSTANTIATE_TEST_SUITE_P(Shipped, ScenarioRegression,
                          ::testing::Values("depot_walking_xyz", "depot_walking_halfsphere",

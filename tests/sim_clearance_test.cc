@@ -49,7 +49,7 @@ Measured measure(const std::string& path, std::optional<uint64_t> seed = {}) {
   m.scenario = sim::load_scenario(path);
   if (seed) m.scenario.seed = *seed;
   const auto stamps = sim::frame_timestamps(m.scenario);
-  const sim::StaticObstacles obstacles(sim::load_scene_layout(m.scenario.scene_path),
+  const sim::StaticObstacles obstacles(m.scenario.layout,
                                        m.scenario.world_seed());
   const sim::CameraMotion motion(m.scenario.motion, m.scenario.seed, stamps.front().first);
   m.clearance = sim::measure_camera_clearance(m.scenario, obstacles, motion, stamps);

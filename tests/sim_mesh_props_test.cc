@@ -140,7 +140,7 @@ TEST(SimMeshProps, HiddenGeomsLabelNoPixels) {
   sim::Scenario s =
       sim::load_scenario(scenario_path("depot_walking_xyz"), {{"props_style", "mesh"}});
   sim::scale_camera(s.camera, 160);
-  sim::World world(sim::build_scene(sim::load_scene_layout(s.scene_path),
+  sim::World world(sim::build_scene(s.layout,
                                     sim::ClassTable::load(s.classes_path), s, s.camera));
   sim::Renderer renderer(world.model(), world.camera_id(), s.camera, sim::GlBackend::kOsMesa,
                          world.geom_instances(), world.skin_instances());

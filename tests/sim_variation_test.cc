@@ -119,7 +119,7 @@ std::string tight_lanes() {
 int check_lanes(const std::string& path, int seeds,
                 const std::vector<YamlOverride>& overrides = {}) {
   sim::Scenario scenario = sim::load_scenario(path, overrides);
-  const sim::SceneLayout layout = sim::load_scene_layout(scenario.scene_path);
+  const sim::SceneLayout layout = scenario.layout;
   int shifted = 0;
   for (uint64_t seed = 1; seed <= static_cast<uint64_t>(seeds); ++seed) {
     const sim::StaticObstacles obstacles(layout, seed);
@@ -179,7 +179,7 @@ TEST(WorldSeed, PushersKeepTheirPathAndSittersTheirChair) {
   for (const char* name : {"depot_walking_xyz", "depot_sitting_static", "depot_patrol"}) {
     const sim::Scenario s = sim::load_scenario(scenario_path(name));
     for (uint64_t seed = 1; seed <= 4; ++seed) {
-      const sim::StaticObstacles obstacles(sim::load_scene_layout(s.scene_path), seed);
+      const sim::StaticObstacles obstacles(s.layout, seed);
       const auto varied = sim::vary_actors(s.actors, seed, obstacles.column_clearance());
       for (size_t i = 0; i < varied.size(); ++i) {
         const sim::ActorSpec &a = s.actors[i], &v = varied[i];

@@ -40,7 +40,7 @@ const OutputKind& simulator_output_kind() {
     OutputKind k{"dataset", dataset::kInfoFile, {"rgb", "depth", dataset::kLabelFolder, "yolo"}};
     for (const char* file :
          {"boxes_yolo", "rgb.txt", "depth.txt", "associations.txt", "groundtruth.txt",
-          "groundtruth_rows.txt", "classes.txt", "calibration.yaml", "scenario.yaml",
+          "groundtruth_rows.txt", "classes.txt", "calibration.yaml", "scenario.yaml", "scene.yaml",
           "timestamps.txt", dataset::kLabelListFile, dataset::kObjectPosesFile, dataset::kBoxesFile,
           dataset::kObjectsFile, dataset::kInfoFile, dataset::kExposuresFile})
       k.entries.push_back(file);
@@ -291,6 +291,9 @@ void DatasetWriter::write_text_files() {
   std::ifstream src(scenario_.source_path, std::ios::binary);
   std::string yaml((std::istreambuf_iterator<char>(src)), std::istreambuf_iterator<char>());
   write("scenario.yaml", yaml);
+  // A generated hall is written out: the scenario file holds only its
+  // parameters, and this is the layout the seed drew.
+  if (scenario_.procedural) write("scene.yaml", scene_layout_yaml(scenario_.layout));
 
   if (options_.yolo_export) {
     // A ready YOLO training set: images, label files and a data file.

@@ -53,6 +53,8 @@ TruthSummary export_truth(Scenario scenario, const RenderRequest& request) {
   write_text_file_atomic(
       (root / "scenario.yaml").string(),
       std::string((std::istreambuf_iterator<char>(src)), std::istreambuf_iterator<char>()));
+  if (scenario.procedural)
+    write_text_file_atomic((root / "scene.yaml").string(), scene_layout_yaml(scenario.layout));
   dir.commit();
   TruthSummary summary;
   summary.frames = sequence.frame_count();

@@ -15,7 +15,7 @@ void apply_overrides(Scenario& scenario, const RenderRequest& r) {
     if (*r.frames < 1) fail("--frames", "must be at least 1");
     scenario.frames = *r.frames;
   }
-  if (r.seed) scenario.seed = *r.seed;
+  if (r.seed) set_scenario_seed(scenario, *r.seed);
   if (r.dynamic_load) apply_dynamic_load(scenario, *r.dynamic_load);
   if (r.ideal) scenario.sensor.ideal = true;
   if (r.width) scale_camera(scenario.camera, *r.width);

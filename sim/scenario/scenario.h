@@ -9,8 +9,10 @@
 #include <Eigen/Core>
 
 #include "common/lens_model.h"
-#include "sim/scenario/path.h"
 #include "sim/scenario/camera_cover.h"
+#include "sim/scenario/path.h"
+#include "sim/scenario/procedural_hall.h"
+#include "sim/scenario/scene_layout.h"
 
 namespace depot::sim {
 
@@ -34,8 +36,10 @@ struct CameraMotionSpec {
   double amplitude = 0.0;  // xyz: m; rpy: deg; halfsphere: radius m (0 = type default)
   double period = 0.0;     // s (0 = type default)
   double tremor = 1.0;     // scale of hand tremor (0 = none)
-  // waypoints
+  // waypoints: `path`, or `route`, one of the hall's named routes
+  // (SceneLayout::routes), which then fills `path`.
   std::vector<Eigen::Vector2d> path;
+  std::string route;
   double height = 1.0;
   double speed = 0.5;
   double pitch_deg = 8.0;  // downward tilt of a robot camera
@@ -158,7 +162,8 @@ struct ActorSpec {
   std::string type;    // human, dog, cat, pig, bird, chair, cart
   std::string action;  // walk, sit, push (human); walk/fly (animals); "" for pushables
   std::vector<Eigen::Vector2d> path;
-  bool loop = true;  // closed path; otherwise out and back
+  std::string route;  // one of the hall's named routes, which then fills `path`
+  bool loop = true;   // closed path; otherwise out and back
   double speed = 1.0;
   double start_offset = 0.0;  // metres along the path at t = 0
   double start_time = 0.0;    // s before it starts moving
@@ -178,7 +183,11 @@ struct Scenario {
   std::string name;
   std::string description;
   std::string source_path;  // the YAML file
-  std::string scene_path;   // scene layout YAML
+  // The hall: `scene:` names a layout file (default scenes/depot.yaml), or
+  // is `procedural` (then `hall:` holds the generator's parameters and the
+  // world seed draws the hall: sim/scenario/procedural_hall.h).
+  SceneLayout layout;
+  std::optional<ProceduralHallSpec> procedural;
   std::string classes_path;
   // Asset catalogue the mesh style draws from (assets/catalog.yaml form).
   std::string asset_catalog_path;

@@ -106,8 +106,8 @@ void read_camera(const Fields& f, CameraIntrinsics& cam) {
 }
 
 void read_motion(const Fields& f, CameraMotionSpec& m) {
-  f.allow_only({"type", "position", "look_at", "amplitude", "period", "tremor", "path", "height",
-                "speed", "pitch_deg", "loop", "file", "anchor_first_pose", "clearance",
+  f.allow_only({"type", "position", "look_at", "amplitude", "period", "tremor", "path", "route",
+                "height", "speed", "pitch_deg", "loop", "file", "anchor_first_pose", "clearance",
                 "allow_close"});
   m.type = f.str("type", "static");
   if (!kMotionTypes.count(m.type))
@@ -121,6 +121,11 @@ void read_motion(const Fields& f, CameraMotionSpec& m) {
   m.period = f.number("period", 0.0, 0.0, 1000.0);
   m.tremor = f.number("tremor", 1.0, 0.0, 10.0);
   m.path = f.path("path");
+  m.route = f.str("route");
+  if (!m.route.empty() && m.type != "waypoints")
+    fail(f.where(f.node("route")), "a 'route' is followed by waypoints motion only");
+  if (!m.route.empty() && !m.path.empty())
+    fail(f.where(f.node("route")), "motion takes a 'path' or a 'route', not both");
   m.height = f.number("height", m.height, 0.05, 4.0);
   m.speed = f.number("speed", m.speed, 0.01, 3.0);
   m.pitch_deg = f.number("pitch_deg", m.pitch_deg, -60.0, 60.0);
@@ -129,8 +134,8 @@ void read_motion(const Fields& f, CameraMotionSpec& m) {
   m.anchor_first_pose = f.get<bool>("anchor_first_pose", true);
   if (f.has("clearance")) m.clearance = f.number("clearance", 0.0, 0.0, 10.0);
   m.allow_close = f.get<bool>("allow_close", false);
-  if (m.type == "waypoints" && m.path.size() < 2)
-    fail(f.where(), "waypoints motion needs a 'path' of at least two points");
+  if (m.type == "waypoints" && m.path.size() < 2 && m.route.empty())
+    fail(f.where(), "waypoints motion needs a 'path' of at least two points or a 'route'");
   if (m.type == "file" && m.file.empty()) fail(f.where(), "file motion needs 'file'");
 }
 
@@ -447,8 +452,9 @@ std::vector<CoverInterval> read_camera_cover(const Fields& top, const Scenario& 
 }
 
 ActorSpec read_actor(const Fields& f, size_t index, uint64_t seed) {
-  f.allow_only({"name", "type", "action", "path", "loop", "speed", "start_offset", "start_time",
-                "size", "position", "yaw_deg", "pushes", "sit_on", "height", "appearance"});
+  f.allow_only({"name", "type", "action", "path", "route", "loop", "speed", "start_offset",
+                "start_time", "size", "position", "yaw_deg", "pushes", "sit_on", "height",
+                "appearance"});
   ActorSpec a;
   a.type = f.str("type");
   if (!is_living_actor(a.type) && !is_pushable_actor(a.type))
@@ -456,6 +462,9 @@ ActorSpec read_actor(const Fields& f, size_t index, uint64_t seed) {
          "unknown actor type '" + a.type + "' (expected human, dog, cat, pig, bird, chair, cart)");
   a.name = f.str("name", a.type + "_" + std::to_string(index));
   a.path = f.path("path");
+  a.route = f.str("route");
+  if (!a.route.empty() && !a.path.empty())
+    fail(f.where(f.node("route")), "actor '" + a.name + "' takes a 'path' or a 'route', not both");
   a.loop = f.get<bool>("loop", true);
   a.speed = f.number("speed", a.type == "human" ? 1.1 : 0.9, 0.0, 5.0);
   a.start_offset = f.number("start_offset", 0.0, 0.0, 1e4);
@@ -479,9 +488,65 @@ ActorSpec read_actor(const Fields& f, size_t index, uint64_t seed) {
   if (!kActions.count(a.action)) fail(f.where(), "unknown action '" + a.action + "'");
   if ((a.action == "push" || a.action == "sit") && a.type != "human")
     fail(f.where(), "only humans can " + a.action);
-  if ((a.action == "walk" || a.action == "fly" || a.action == "push") && a.path.size() < 2)
-    fail(f.where(), "actor '" + a.name + "' needs a 'path' of at least two points");
+  if ((a.action == "walk" || a.action == "fly" || a.action == "push") && a.path.size() < 2 &&
+      a.route.empty())
+    fail(f.where(), "actor '" + a.name + "' needs a 'path' of at least two points or a 'route'");
   return a;
+}
+
+// `hall:` of a procedural scene: each key a number or [low, high].
+ProceduralHallSpec read_procedural_hall(const Fields& f) {
+  f.allow_only({"length", "width", "height", "rack_rows", "aisle_width", "rack_length",
+                "rack_levels", "cross_aisle", "clutter", "robot_width"});
+  ProceduralHallSpec spec;
+  spec.where = f.where();
+  auto range = [&](const char* key, HallRange& r) {
+    const YAML::Node n = f.node(key);
+    r.where = f.where(n);
+    if (!n) return;
+    std::vector<double> v;
+    try {
+      v = n.IsSequence() ? n.as<std::vector<double>>() : std::vector<double>{n.as<double>()};
+    } catch (const YAML::Exception&) {
+      v.clear();
+    }
+    if (v.size() == 1) v.push_back(v[0]);
+    if (v.size() != 2)
+      fail(r.where, "hall." + std::string(key) + " must be a number or a range [low, high]");
+    r.low = v[0], r.high = v[1];
+  };
+  range("length", spec.length);
+  range("width", spec.width);
+  range("height", spec.height);
+  range("rack_rows", spec.rack_rows);
+  range("aisle_width", spec.aisle_width);
+  range("rack_length", spec.rack_length);
+  range("rack_levels", spec.rack_levels);
+  range("cross_aisle", spec.cross_aisle);
+  range("clutter", spec.clutter);
+  spec.robot_width = f.get<double>("robot_width", spec.robot_width);
+  spec.robot_width_where = f.where(f.node("robot_width"));
+  check_procedural_hall(spec);
+  return spec;
+}
+
+// The hall's route a motion or actor names, or one error line listing the
+// routes this hall has.
+const std::vector<Eigen::Vector2d>& route_of(const Scenario& s, const std::string& route,
+                                             const std::string& who) {
+  const auto it = s.layout.routes.find(route);
+  if (it != s.layout.routes.end()) return it->second;
+  std::string names;
+  for (const auto& [name, points] : s.layout.routes) names += (names.empty() ? "" : ", ") + name;
+  fail(s.source_path, who + " follows route '" + route + "', which " + s.layout.path +
+                          (names.empty() ? " does not have (it has no routes)"
+                                         : " does not have (its routes: " + names + ")"));
+}
+
+void follow_routes(Scenario& s) {
+  if (!s.motion.route.empty()) s.motion.path = route_of(s, s.motion.route, "the camera motion");
+  for (ActorSpec& a : s.written_actors)
+    if (!a.route.empty()) a.path = route_of(s, a.route, "actor '" + a.name + "'");
 }
 
 }  // namespace
@@ -523,7 +588,7 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
                   "seed_world",   "frames",      "shadows",       "dynamic_load", "style",
                   "actors_style", "props_style", "asset_catalog", "camera",       "motion",
                   "timestamps",   "sensor",      "camera_cover",  "lamps",        "openings",
-                  "actors"});
+                  "actors",       "hall"});
 
   Scenario s;
   s.source_path = path;
@@ -531,7 +596,15 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
   s.description = top.str("description");
   // Paths the scenario writes are relative to its own folder; the defaults
   // are the project's shipped files wherever the scenario was copied to.
-  s.scene_path = top.has("scene") ? top.existing_file("scene") : project_file("scenes/depot.yaml");
+  std::string scene_file;
+  if (top.str("scene") == "procedural")
+    s.procedural = read_procedural_hall(Fields(top.node("hall"), source, "hall"));
+  else if (top.has("hall"))
+    fail(top.where(top.node("hall")),
+         "'hall' sets a generated hall's parameters: it needs "
+         "'scene: procedural'");
+  else
+    scene_file = top.has("scene") ? top.existing_file("scene") : project_file("scenes/depot.yaml");
   s.classes_path =
       top.has("classes") ? top.existing_file("classes") : project_file("scenes/classes.yaml");
   s.asset_catalog_path = top.has("asset_catalog") ? top.existing_file("asset_catalog")
@@ -595,8 +668,19 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
     if (!claimed.insert(a.target).second)
       fail(path, "'" + a.target + "' is used by more than one actor");
   }
+  s.layout = s.procedural ? generate_procedural_hall(*s.procedural, s.world_seed())
+                          : load_scene_layout(scene_file);
+  follow_routes(s);
   apply_dynamic_load(s, s.dynamic_load);
   return s;
+}
+
+void set_scenario_seed(Scenario& s, uint64_t seed) {
+  s.seed = seed;
+  if (!s.procedural || s.seed_world) return;
+  s.layout = generate_procedural_hall(*s.procedural, s.world_seed());
+  follow_routes(s);
+  apply_dynamic_load(s, s.dynamic_load);
 }
 
 void apply_dynamic_load(Scenario& s, double load) {

@@ -16,6 +16,10 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
 // (0 = no living actors, 1 = as written, up to 4). Deterministic.
 void apply_dynamic_load(Scenario& scenario, double load);
 
+// Sets the seed. A procedural hall drawn by it (no `seed_world`) is drawn
+// again, and the motion's and actors' routes follow the new hall.
+void set_scenario_seed(Scenario& scenario, uint64_t seed);
+
 // The names of the scenarios shipped in `folder` (sorted).
 std::vector<std::string> list_scenarios(const std::string& folder);
 

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "sim/scene/geometry.h"
-#include "sim/scene/scene_layout.h"
+#include "sim/scenario/scene_layout.h"
 
 namespace depot::sim {
 

@@ -21,7 +21,7 @@
 
 #include "sim/assets/asset_catalog.h"
 #include "sim/assets/mujoco_mesh.h"
-#include "sim/scene/scene_layout.h"
+#include "sim/scenario/scene_layout.h"
 
 namespace depot::sim {
 

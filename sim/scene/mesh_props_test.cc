@@ -33,7 +33,7 @@ struct Props {
 };
 
 SceneModel scene_of(const Scenario& s) {
-  return build_scene(load_scene_layout(s.scene_path), ClassTable::load(s.classes_path), s,
+  return build_scene(s.layout, ClassTable::load(s.classes_path), s,
                      s.camera);
 }
 

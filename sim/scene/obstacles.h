@@ -17,7 +17,7 @@
 #include "common/pose.h"
 #include "sim/actors/actor.h"
 #include "sim/actors/actor_variation.h"
-#include "sim/scene/scene_layout.h"
+#include "sim/scenario/scene_layout.h"
 
 namespace depot::sim {
 

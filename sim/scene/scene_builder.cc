@@ -243,7 +243,13 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
     x << "<texture name=\"" << t.name << "\" type=\"" << (t.cube ? "cube" : "2d") << "\" file=\""
       << file << "\"/>\n";
   }
-  for (const auto& m : textures.materials) {
+  for (MaterialSpec m : textures.materials) {
+    // The layout's paint: its tints multiply the hall's wall and floor colour.
+    const Eigen::Vector3d* tint = m.name == "wall"    ? &layout.wall_tint
+                                  : m.name == "floor" ? &layout.floor_tint
+                                                      : nullptr;
+    if (tint)
+      for (int k = 0; k < 3; ++k) m.rgba[k] *= (*tint)[k];
     x << "<material name=\"" << m.name << "\"";
     if (!m.texture.empty()) {
       x << " texture=\"" << m.texture << "\" texrepeat=\"" << num(m.texrepeat) << " "
@@ -253,9 +259,9 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
       << num(m.rgba[3]) << "\" specular=\"0\" shininess=\"0\" reflectance=\"0\"/>\n";
   }
   x << "</asset>\n<worldbody>\n";
-  for (const auto& l : layout.lights) {
-    x << "<light pos=\"" << vec(l)
-      << "\" dir=\"0 0 -1\" directional=\"false\" diffuse=\"0.42 0.42 0.4\""
+  for (const SceneLight& l : layout.lights) {
+    x << "<light pos=\"" << vec(l.position) << "\" dir=\"0 0 -1\" directional=\"false\" diffuse=\""
+      << vec(l.colour) << "\""
       << " specular=\"0 0 0\" attenuation=\"1 0.02 0\" cutoff=\"80\" exponent=\"1\" castshadow=\""
       << (scenario.shadows ? "true" : "false") << "\"/>\n";
   }

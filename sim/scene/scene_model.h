@@ -10,7 +10,7 @@
 #include "sim/actors/actor.h"
 #include "sim/scenario/class_table.h"
 #include "sim/scenario/scenario.h"
-#include "sim/scene/scene_layout.h"
+#include "sim/scenario/scene_layout.h"
 
 namespace depot::sim {
 

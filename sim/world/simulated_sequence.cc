@@ -8,8 +8,8 @@
 #include "common/rng.h"
 #include "common/tum_io.h"
 #include "sim/actors/actor_variation.h"
+#include "sim/scenario/scene_layout.h"
 #include "sim/scene/obstacles.h"
-#include "sim/scene/scene_layout.h"
 #include "sim/sensor/light.h"
 #include "sim/sensor/motion_field.h"
 #include "sim/sensor/shutter.h"
@@ -29,7 +29,9 @@ std::vector<int> lamp_lights(const Scenario& scenario, const SceneLayout& layout
   std::vector<int> lights;
   for (const Scenario::Lamp& lamp : scenario.lamps) {
     if (layout.lights.empty()) fail(scenario.source_path, "lamps: the scene has no lights");
-    auto distance = [&](size_t i) { return (layout.lights[i].head<2>() - lamp.near).norm(); };
+    auto distance = [&](size_t i) {
+      return (layout.lights[i].position.head<2>() - lamp.near).norm();
+    };
     int nearest = 0;
     for (size_t i = 1; i < layout.lights.size(); ++i)
       if (distance(i) < distance(nearest)) nearest = static_cast<int>(i);
@@ -38,8 +40,8 @@ std::vector<int> lamp_lights(const Scenario& scenario, const SceneLayout& layout
       fail(scenario.source_path, "lamps " + std::to_string(same - lights.begin() + 1) + " and " +
                                      std::to_string(lights.size() + 1) +
                                      " both pick the ceiling light at (" +
-                                     std::to_string(layout.lights[nearest].x()) + ", " +
-                                     std::to_string(layout.lights[nearest].y()) + ")");
+                                     std::to_string(layout.lights[nearest].position.x()) + ", " +
+                                     std::to_string(layout.lights[nearest].position.y()) + ")");
     lights.push_back(nearest);
   }
   return lights;
@@ -101,14 +103,15 @@ SimulatedSequence::SimulatedSequence(const Scenario& scenario, GlBackend backend
       exposure_control_(scenario.sensor.exposure_control, scenario.sensor.exposure) {
   stamps_ = frame_timestamps(scenario_);
   if (stamps_.empty()) fail(scenario_.source_path, "no frames to render");
-  SceneLayout layout = load_scene_layout(scenario_.scene_path);
+  const SceneLayout& layout = scenario_.layout;
   // Before anything is built or rendered: the camera keeps its clearance to
   // the static scene, and the world seed draws the actors' variation.
   const StaticObstacles obstacles(layout, scenario_.world_seed());
   motion_ = std::make_unique<CameraMotion>(scenario_.motion, scenario_.seed, stamps_.front().first);
   enforce_camera_clearance(scenario_,
                            measure_camera_clearance(scenario_, obstacles, *motion_, stamps_));
-  scenario_.actors = vary_actors(scenario_.actors, scenario_.world_seed(), obstacles.column_clearance());
+  scenario_.actors =
+      vary_actors(scenario_.actors, scenario_.world_seed(), obstacles.column_clearance());
   // A lens or non-square pixels: render a wider square-pixel canvas and
   // resample it (sim/sensor/lens.h); --ideal keeps the pixels, drops the lens.
   const LensDistortion lens = scenario_.sensor.ideal ? LensDistortion{} : scenario_.sensor.lens;
