@@ -1,8 +1,11 @@
 #include "eval/keypoint_score.h"
 
+#include <filesystem>
 #include <map>
 
 #include "common/error.h"
+#include "dataset/dataset_files.h"
+#include "dataset/objects.h"
 
 namespace depot::eval {
 
@@ -32,9 +35,21 @@ KeypointFileScore score_keypoint_file(const MotionTruth& truth, const KeypointFi
     f.keep.push_back(row.kept ? 1 : 0);
   }
   KeypointFileScore out;
+  std::map<int, std::string> class_of;
+  if (std::filesystem::is_regular_file(std::filesystem::path(truth.root()) / dataset::kObjectsFile))
+    for (const auto& o : dataset::read_objects(truth.root()).objects) class_of[o.id] = o.class_name;
   for (const auto& [t, f] : frames) {
-    out.score.add(score_frame(truth, t, f.keypoints, f.keep, scale_factor));
+    MotionTruth::KeypointTruth labels;
+    out.score.add(score_frame(truth, t, f.keypoints, f.keep, scale_factor, &labels));
     out.keypoints += f.keypoints.size();
+    for (size_t i = 0; i < f.keypoints.size(); ++i) {
+      if (!labels.on_moving[i]) continue;
+      const auto it = class_of.find(labels.instance[i]);
+      if (it == class_of.end()) continue;
+      ClassRecall& c = out.moving_by_class[it->second];
+      ++c.moving;
+      c.rejected += f.keep[i] ? 0 : 1;
+    }
   }
   out.frames = frames.size();
   return out;

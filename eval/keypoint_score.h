@@ -3,6 +3,8 @@
 // system: the built-in modes score each frame as they run it
 // (tools/runner/slam_runner.cc) and `depot eval rejection` scores any
 // system's per-keypoint file (eval/keypoint_file.h) with the same call.
+#include <cmath>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -21,8 +23,19 @@ RejectionScore score_frame(const MotionTruth& truth, double timestamp,
                            const std::vector<uint8_t>& keep, float scale_factor,
                            MotionTruth::KeypointTruth* labels = nullptr);
 
+// Keypoints on movers of one class: how many, and how many were rejected.
+struct ClassRecall {
+  long moving = 0;
+  long rejected = 0;
+  double recall() const { return moving ? static_cast<double>(rejected) / moving : NAN; }
+};
+
 struct KeypointFileScore {
   RejectionScore score;
+  // Recall by the class of the moving object a keypoint lies on (objects.json):
+  // whether a mover of an a-priori static class (a carried crate) is
+  // rejected, beside the people. Empty when the dataset has no objects.json.
+  std::map<std::string, ClassRecall> moving_by_class;
   size_t frames = 0;          // frames with at least one row
   size_t keypoints = 0;       // rows scored
   size_t dataset_frames = 0;  // frames the dataset's labels list (score_dataset_keypoints)

@@ -50,6 +50,9 @@ class MotionTruth {
   // The rgb timestamps that have a label image, in increasing order.
   std::vector<double> timestamps() const;
 
+  // The dataset folder.
+  const std::string& root() const { return root_; }
+
   // The label image (CV_16U instance ids) of the frame with this rgb
   // timestamp. Throws depot::Error when it has none or it is unreadable.
   cv::Mat label_image(double timestamp) const;

@@ -71,6 +71,10 @@ std::string render_series_plot_svg(const SeriesPlot& plot) {
       if (!plot.log_y || a > 0) lo = std::min(lo, a);
       hi = std::max(hi, s.mean[i] + e);
     }
+  for (const PlotThreshold& t : plot.thresholds) {
+    if (!plot.log_y || t.y > 0) lo = std::min(lo, t.y);
+    hi = std::max(hi, t.y);
+  }
   AxisRange y;
   if (plot.log_y) {
     if (!std::isfinite(lo) || lo <= 0)
@@ -121,6 +125,16 @@ std::string render_series_plot_svg(const SeriesPlot& plot) {
     svg.text({px, bottom + 18}, plot.x_levels[i], tick);
   }
   svg.rect(kLeft, kTop, right - kLeft, bottom - kTop, "none", &frame);
+  for (const PlotThreshold& t : plot.thresholds) {
+    const double py = to_y(t.y);
+    if (py < kTop - 1e-9 || py > bottom + 1e-9) continue;  // a fixed range may leave it out
+    svg.line({kLeft, py}, {right, py}, Stroke{"#888888", 1.2, "5 4"});
+    TextStyle note;
+    note.size = 11;
+    note.anchor = TextAnchor::kEnd;
+    note.colour = "#666666";
+    svg.text({right - 4, py - 4}, t.label, note);
+  }
 
   for (size_t k = 0; k < plot.series.size(); ++k) {
     const PlotSeries& s = plot.series[k];
@@ -155,6 +169,21 @@ std::string render_series_plot_svg(const SeriesPlot& plot) {
     TextStyle legend;
     legend.size = 12;
     svg.text({right + 46, ly + 4}, s.name, legend);
+  }
+
+  for (const PlotRing& r : plot.rings) {
+    if (r.series >= plot.series.size() || r.level >= n) continue;
+    const PlotSeries& s = plot.series[r.series];
+    const double v = s.mean[r.level];
+    if (!std::isfinite(v) || (plot.log_y && v <= 0)) continue;
+    const Point2 p{to_x(xs[r.level]), to_y(v)};
+    const Stroke ring{s.colour, 2.0, ""};
+    svg.circle(p, 8.0, "none", &ring);
+    TextStyle note;
+    note.size = 11;
+    note.anchor = TextAnchor::kMiddle;
+    note.colour = s.colour;
+    svg.text({p.x, p.y - 12}, r.label, note);
   }
 
   TextStyle label;

@@ -21,6 +21,20 @@ struct PlotSeries {
   PlotMarker marker = PlotMarker::kCircle;
 };
 
+// One point ringed and labelled in its series' colour, e.g. where a mode
+// first breaks a bound.
+struct PlotRing {
+  size_t series = 0;  // index into SeriesPlot::series
+  size_t level = 0;   // index into x_levels
+  std::string label;
+};
+
+// A bound drawn across the plot as a dashed grey line with its label.
+struct PlotThreshold {
+  double y = 0.0;
+  std::string label;
+};
+
 struct SeriesPlot {
   std::string title;
   std::string x_label;
@@ -31,6 +45,8 @@ struct SeriesPlot {
   // lo >= hi the range follows the data.
   double y_lo = 0.0, y_hi = 0.0;
   std::vector<PlotSeries> series;
+  std::vector<PlotThreshold> thresholds;  // inside the y range drawn
+  std::vector<PlotRing> rings;
 };
 
 // Throws depot::Error when there are no levels, a series has the wrong

@@ -79,9 +79,11 @@ void SvgDocument::rect(double x, double y, double width, double height, const st
            (outline ? stroke_attributes(*outline) : std::string()) + "/>\n";
 }
 
-void SvgDocument::circle(Point2 centre, double radius, const std::string& fill) {
+void SvgDocument::circle(Point2 centre, double radius, const std::string& fill,
+                         const Stroke* outline) {
   body_ += "<circle cx=\"" + num(centre.x) + "\" cy=\"" + num(centre.y) + "\" r=\"" + num(radius) +
-           "\" fill=\"" + fill + "\"/>\n";
+           "\" fill=\"" + fill + "\"" + (outline ? stroke_attributes(*outline) : std::string()) +
+           "/>\n";
 }
 
 void SvgDocument::text(Point2 at, const std::string& content, const TextStyle& style) {

@@ -35,7 +35,8 @@ class SvgDocument {
   void polyline(const std::vector<Point2>& points, const Stroke& stroke);
   void rect(double x, double y, double width, double height, const std::string& fill,
             const Stroke* outline = nullptr);
-  void circle(Point2 centre, double radius, const std::string& fill);
+  void circle(Point2 centre, double radius, const std::string& fill,
+              const Stroke* outline = nullptr);
   void text(Point2 at, const std::string& content, const TextStyle& style = {});
   // A vertical gradient (bottom to top) through `colours`, usable as
   // fill="url(#id)".

@@ -148,6 +148,14 @@ TEST(Sweep, ResumesAfterBeingKilledAndReports) {
   EXPECT_THAT(tables, ::testing::HasSubstr("| depot_walking_xyz | 1.5 |")) << tables;
   EXPECT_THAT(tables, ::testing::HasSubstr("recall with depth")) << tables;
   EXPECT_THAT(resumed.output, ::testing::HasSubstr("report: "));
+  // The worlds rendered: each dataset's contact sheet outlives the dataset,
+  // and the report shows it.
+  const std::string html = read(sweep / "report" / "report.html");
+  for (const std::string id :
+       {"depot_walking_xyz__load-0__s1", "depot_walking_xyz__load-1.5__s1"}) {
+    EXPECT_GT(fs::file_size(sweep / "data" / (id + ".jpg")), 10000u) << id;
+    EXPECT_THAT(html, ::testing::HasSubstr("<img src=\"../data/" + id + ".jpg\"")) << id;
+  }
 
   // A second resume has nothing to do.
   const test::DepotResult again = test::depot("sweep resume " + sweep.string());

@@ -89,7 +89,7 @@ std::vector<ActorSpec> vary_actors(const std::vector<ActorSpec>& actors, uint64_
     const uint64_t key = name_hash(a.name);
     if (!a.fixed_appearance) a.appearance = derive_seed(world_seed, key, kAppearanceStream);
     Rng timing(derive_seed(world_seed, key, kTimingStream));
-    if (a.action == "push") {
+    if (a.action == "push" || a.action == "carry") {
       a.start_time += timing.uniform(0.0, 1.0);
       a.speed *= timing.uniform(0.92, 1.08);
       a.gait_phase = timing.uniform(0.0, 2.0 * M_PI);

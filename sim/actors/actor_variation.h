@@ -10,8 +10,9 @@
 //    kBirdLaneHalfWidth) that never takes the path closer to static geometry
 //    than min(its written clearance, kActorClearance): otherwise the shift is
 //    mirrored to the other side, then halved (twice), and else dropped;
-//  - pushers: start time + [0, 1] s, speed x [0.92, 1.08], gait phase; their
-//    path is kept (it must meet the chair or cart);
+//  - pushers and carriers: start time + [0, 1] s, speed x [0.92, 1.08], gait
+//    phase; their path is kept (it must meet the chair or cart; the goods
+//    rest at its ends); a carrier's waits come from its appearance;
 //  - sitters, chairs and carts: their appearance only;
 //  - everyone: appearance (clothes, fur and feather colours, size within a few
 //    per cent, idle-motion phase, the goods on a cart) unless `appearance` is

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/rng.h"
+#include "sim/actors/crowd.h"
 #include "sim/actors/limb.h"
 
 namespace depot::sim {
@@ -47,6 +48,13 @@ HumanActor::HumanActor(const ActorSpec& spec, const SeatPose* seat) {
   if (spec.action == "sit") {
     mode_ = Mode::kSit;
     if (seat) seat_ = *seat;
+  } else if (spec.action == "crowd") {
+    mode_ = Mode::kCrowd;
+    track_ = spec.track;
+  } else if (spec.action == "carry") {
+    mode_ = Mode::kCarry;
+    path_ = actor_path(spec);
+    carry_ = std::make_shared<CarryMotion>(spec, path_, scale_);
   } else {
     mode_ = spec.action == "push" ? Mode::kPush : Mode::kWalk;
     path_ = actor_path(spec);
@@ -93,8 +101,18 @@ double HumanActor::distance(double t) const {
   return offset_ + speed_ * std::max(0.0, t - start_time_);
 }
 
+std::unique_ptr<Actor> HumanActor::make_carried_goods() const {
+  if (!carry_) return nullptr;
+  return std::make_unique<CarriedGoods>(name_, carry_);
+}
+
 Pose HumanActor::root_pose(double t) const {
   if (mode_ == Mode::kSit) return ground_pose(seat_.position, 0.0, seat_.yaw);
+  if (mode_ == Mode::kCarry) return carry_->carrier_root(t);
+  if (mode_ == Mode::kCrowd) {
+    const TrackPoint p = track_at(track_, t);
+    return ground_pose(p.xy, 0.0, p.heading);
+  }
   double d = distance(t);
   return ground_pose(path_.position(d), 0.0, path_.heading(d));
 }
@@ -134,10 +152,20 @@ HumanPosture HumanActor::posture(double t) const {
     return p;
   }
   // Walking: phase advances with distance (stride 1.35 m per full cycle).
-  const bool moving = t >= start_time_ && speed_ > 0.0;
+  // A carrier stands still while it lifts, sets down or waits.
+  const CarryState carry = carry_ ? carry_->at(t) : CarryState{};
+  // A crowd's walker moves as its track says (slowing, stopping, turning).
+  const bool track_moving =
+      mode_ == Mode::kCrowd &&
+      track_at(track_, t + 0.1).walked - track_at(track_, t - 0.1).walked > 0.02;
+  const bool moving = mode_ == Mode::kCrowd ? track_moving
+                                            : t >= start_time_ && speed_ > 0.0 &&
+                                                  (mode_ != Mode::kCarry || carry.lift >= 1.0);
   const double stride = 1.35 * scale_;
-  const double phi =
-      moving ? 2.0 * M_PI * (distance(t) - offset_) / stride + gait_phase_ : gait_phase_;
+  const double walked = mode_ == Mode::kCarry   ? carry.distance
+                        : mode_ == Mode::kCrowd ? track_at(track_, t).walked
+                                                : distance(t) - offset_;
+  const double phi = moving ? 2.0 * M_PI * walked / stride + gait_phase_ : gait_phase_;
   const double amp = moving ? deg(22.0) * std::clamp(speed_ / 1.2, 0.6, 1.3) : 0.0;
   p.hip[0] = amp * std::sin(phi);
   p.hip[1] = -amp * std::sin(phi);
@@ -151,6 +179,14 @@ HumanPosture HumanActor::posture(double t) const {
       p.elbow[i] = deg(20.0);
     }
     p.torso_pitch = deg(12.0);
+  } else if (mode_ == Mode::kCarry && (carry.lift > 0.0 || carry.bend > 0.0)) {
+    // Goods held at the waist: upper arms a little forward, forearms level;
+    // bending down to a support, the torso and arms reach for it.
+    for (int i = 0; i < 2; ++i) {
+      p.shoulder[i] = deg(20.0) + deg(35.0) * carry.bend;
+      p.elbow[i] = deg(50.0) - deg(30.0) * carry.bend;
+    }
+    p.torso_pitch = deg(4.0) + deg(40.0) * carry.bend;
   } else {
     p.shoulder[0] = -0.8 * amp * std::sin(phi);
     p.shoulder[1] = 0.8 * amp * std::sin(phi);

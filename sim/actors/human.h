@@ -2,6 +2,7 @@
 #include <memory>
 
 #include "sim/actors/actor.h"
+#include "sim/actors/carry.h"
 #include "sim/actors/human_rig.h"
 #include "sim/scenario/path.h"
 
@@ -9,8 +10,9 @@ namespace depot::sim {
 
 // A person of rigid parts with an articulated gait (legs and arms swing, the
 // pelvis rides on the stance leg so the torso bobs). Walks a path, pushes a
-// chair/cart with an invisible contact plate in front, or sits on a chair
-// moving head and arms slightly.
+// chair/cart with an invisible contact plate in front, sits on a chair
+// moving head and arms slightly, carries goods back and forth (carry.h), or
+// walks a crowd's simulated track (crowd.h).
 class HumanActor : public Actor {
  public:
   HumanActor(const ActorSpec& spec, const SeatPose* seat);
@@ -25,6 +27,9 @@ class HumanActor : public Actor {
   void use_mesh(std::shared_ptr<const HumanRig> rig) { rig_ = std::move(rig); }
   const HumanRig* rig() const { return rig_.get(); }
 
+  // The goods a carrier carries, as their own instance (nullptr for others).
+  std::unique_ptr<Actor> make_carried_goods() const;
+
   // The gait at time t (what both the primitives and the rig follow).
   HumanPosture posture(double t) const;
 
@@ -36,7 +41,7 @@ class HumanActor : public Actor {
   static constexpr double kLargestScale = 1.07;
 
  private:
-  enum class Mode { kWalk, kPush, kSit };
+  enum class Mode { kWalk, kPush, kSit, kCarry, kCrowd };
   double distance(double t) const;
 
   Mode mode_ = Mode::kWalk;
@@ -48,6 +53,8 @@ class HumanActor : public Actor {
   double phase_ = 0.0;       // per-person offset of idle motions
   double gait_phase_ = 0.0;  // rad, walking cycle at the start
   SeatPose seat_;
+  std::shared_ptr<const CarryMotion> carry_;  // kCarry only
+  std::vector<TrackPoint> track_;             // kCrowd only
   std::shared_ptr<const HumanRig> rig_;
 };
 

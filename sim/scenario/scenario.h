@@ -157,10 +157,32 @@ struct SensorSpec {
   }
 };
 
+// One sample of a walker's simulated track (crowds, sim/actors/crowd.h).
+struct TrackPoint {
+  double t = 0;  // s since the first frame
+  Eigen::Vector2d xy{0, 0};
+  double heading = 0;  // rad
+  double walked = 0;   // m walked since the start (drives the gait)
+};
+
+// `crowds`: groups of walkers moving between goals in an area, avoiding
+// each other and the static scene (sim/actors/crowd.h).
+struct CrowdSpec {
+  std::string name;                       // its walkers are <name>_1 .. <name>_N
+  int count = 10;                         // walkers at dynamic load 1 (scaled by the load)
+  Eigen::Vector2d lo{0, 0}, hi{0, 0};     // the area, hall coordinates
+  double speed_lo = 0.9, speed_hi = 1.4;  // m/s, drawn per walker
+  // "ends": to and fro between the area's two short ends (a busy aisle);
+  // "anywhere": to goals anywhere in it.
+  std::string goals = "ends";
+  std::string where;  // its entry (file:line), for errors found later
+};
+
 struct ActorSpec {
   std::string name;
-  std::string type;    // human, dog, cat, pig, bird, chair, cart
-  std::string action;  // walk, sit, push (human); walk/fly (animals); "" for pushables
+  std::string type;  // human, dog, cat, pig, bird, chair, cart
+  std::string
+      action;  // walk, sit, push, carry, crowd (human); walk/fly (animals); "" for pushables
   std::vector<Eigen::Vector2d> path;
   std::string route;  // one of the hall's named routes, which then fills `path`
   bool loop = true;   // closed path; otherwise out and back
@@ -170,7 +192,14 @@ struct ActorSpec {
   double size = 1.0;
   Eigen::Vector2d position{0, 0};
   double yaw_deg = 0.0;
-  std::string target;   // push: pushable name; sit: chair name
+  std::string target;  // push: pushable name; sit: chair name
+  // carry: the goods a person carries out and back along its path
+  // (sim/actors/carry.h): crate or sack, resting pick_height / put_height m
+  // up at the path's start and end.
+  std::string carries;
+  double pick_height = 0.0, put_height = 0.0;
+  // crowd: the walker's simulated track (action "crowd"), sampled evenly.
+  std::vector<TrackPoint> track;
   double height = 0.0;  // bird flight height
   uint64_t appearance = 0;
   bool fixed_appearance = false;  // `appearance` written in the file (not drawn from the seed)
@@ -237,6 +266,7 @@ struct Scenario {
     std::string where;             // its entry (file:line), for errors found later
   };
   std::vector<Opening> openings;
+  std::vector<CrowdSpec> crowds;          // walkers simulated when the world is built
   std::vector<ActorSpec> written_actors;  // as in the file
   std::vector<ActorSpec> actors;          // after dynamic-load scaling
 };

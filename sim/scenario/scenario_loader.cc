@@ -378,6 +378,40 @@ void check_shutter_fits_frame(const Fields& top, const Scenario& s) {
 }
 
 // `lamps: [{near: [x, y], events: [[t, level], ...]}, ...]`.
+// `crowds:` entries (sim/actors/crowd.h simulates them with the world).
+std::vector<CrowdSpec> read_crowds(const Fields& top, const Source& source) {
+  const YAML::Node n = top.node("crowds");
+  if (!n.IsSequence())
+    fail(top.where(n), "'crowds' must be a list of {name, count, area, speed, goals}");
+  std::vector<CrowdSpec> crowds;
+  for (const auto& node : n) {
+    Fields f(node, source, "a crowd");
+    f.allow_only({"name", "count", "area", "speed", "goals"});
+    CrowdSpec c;
+    c.where = f.where();
+    c.name = f.str("name", "crowd_" + std::to_string(crowds.size() + 1));
+    c.count = f.number<int>("count", c.count, 1, 200);
+    const std::vector<Eigen::Vector2d> area = f.path("area");
+    if (area.size() != 2 || !(area[0].x() < area[1].x()) || !(area[0].y() < area[1].y()))
+      fail(f.where(f.node("area")),
+           "crowd '" + c.name + "': 'area' must be [[x_min, y_min], [x_max, y_max]]");
+    c.lo = area[0], c.hi = area[1];
+    if (f.has("speed")) {
+      const Eigen::Vector2d v = f.vec2("speed", {c.speed_lo, c.speed_hi});
+      if (!(v.x() >= 0.2 && v.x() <= v.y() && v.y() <= 2.5))
+        fail(f.where(f.node("speed")),
+             "crowd '" + c.name + "': 'speed' must be [low, high] m/s within [0.2, 2.5]");
+      c.speed_lo = v.x(), c.speed_hi = v.y();
+    }
+    c.goals = f.str("goals", c.goals);
+    if (c.goals != "ends" && c.goals != "anywhere")
+      fail(f.where(f.node("goals")),
+           "crowd '" + c.name + "': unknown goals '" + c.goals + "' (expected ends or anywhere)");
+    crowds.push_back(c);
+  }
+  return crowds;
+}
+
 std::vector<Scenario::Lamp> read_lamps(const Fields& top, const Source& source) {
   const YAML::Node n = top.node("lamps");
   if (!n.IsSequence()) fail(top.where(n), "'lamps' must be a list of {near, events}");
@@ -453,8 +487,8 @@ std::vector<CoverInterval> read_camera_cover(const Fields& top, const Scenario& 
 
 ActorSpec read_actor(const Fields& f, size_t index, uint64_t seed) {
   f.allow_only({"name", "type", "action", "path", "route", "loop", "speed", "start_offset",
-                "start_time", "size", "position", "yaw_deg", "pushes", "sit_on", "height",
-                "appearance"});
+                "start_time", "size", "position", "yaw_deg", "pushes", "sit_on", "carries",
+                "pick_height", "put_height", "height", "appearance"});
   ActorSpec a;
   a.type = f.str("type");
   if (!is_living_actor(a.type) && !is_pushable_actor(a.type))
@@ -481,15 +515,31 @@ ActorSpec read_actor(const Fields& f, size_t index, uint64_t seed) {
   } else if (f.has("sit_on")) {
     a.action = "sit";
     a.target = f.str("sit_on");
+  } else if (f.has("carries")) {
+    a.action = "carry";
+    a.carries = f.str("carries");
+    if (a.carries != "crate" && a.carries != "sack")
+      fail(f.where(f.node("carries")),
+           "actor '" + a.name + "' carries '" + a.carries + "' (expected crate or sack)");
+    a.pick_height = f.number("pick_height", 0.0, 0.0, 2.0);
+    a.put_height = f.number("put_height", 0.0, 0.0, 2.0);
+    // Out and back: the goods go to the path's end and come back.
+    if (f.has("loop") && a.loop)
+      fail(f.where(f.node("loop")),
+           "actor '" + a.name + "' carries its goods out and back: 'loop' must be false");
+    a.loop = false;
   } else if (is_living_actor(a.type)) {
     a.action = f.str("action", a.type == "bird" ? "fly" : "walk");
   }
-  static const std::set<std::string> kActions = {"walk", "fly", "sit", "push", ""};
+  if (a.action != "carry" && (f.has("pick_height") || f.has("put_height")))
+    fail(f.where(f.node(f.has("pick_height") ? "pick_height" : "put_height")),
+         "actor '" + a.name + "': pick_height and put_height go with 'carries'");
+  static const std::set<std::string> kActions = {"walk", "fly", "sit", "push", "carry", ""};
   if (!kActions.count(a.action)) fail(f.where(), "unknown action '" + a.action + "'");
-  if ((a.action == "push" || a.action == "sit") && a.type != "human")
+  if ((a.action == "push" || a.action == "sit" || a.action == "carry") && a.type != "human")
     fail(f.where(), "only humans can " + a.action);
-  if ((a.action == "walk" || a.action == "fly" || a.action == "push") && a.path.size() < 2 &&
-      a.route.empty())
+  if ((a.action == "walk" || a.action == "fly" || a.action == "push" || a.action == "carry") &&
+      a.path.size() < 2 && a.route.empty())
     fail(f.where(), "actor '" + a.name + "' needs a 'path' of at least two points or a 'route'");
   return a;
 }
@@ -588,7 +638,7 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
                   "seed_world",   "frames",      "shadows",       "dynamic_load", "style",
                   "actors_style", "props_style", "asset_catalog", "camera",       "motion",
                   "timestamps",   "sensor",      "camera_cover",  "lamps",        "openings",
-                  "actors",       "hall"});
+                  "actors",       "hall",        "crowds"});
 
   Scenario s;
   s.source_path = path;
@@ -650,10 +700,17 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
     for (const auto& node : actors)
       s.written_actors.push_back(read_actor(Fields(node, source, "actor"), i++, s.seed));
   }
+  if (top.has("crowds")) s.crowds = read_crowds(top, source);
   // Cross-references: unique names, push/sit targets exist and are pushables.
   std::set<std::string> names;
   for (const auto& a : s.written_actors) {
     if (!names.insert(a.name).second) fail(path, "duplicate actor name '" + a.name + "'");
+  }
+  for (const auto& c : s.crowds) {
+    if (!names.insert(c.name).second) fail(c.where, "crowd name '" + c.name + "' is taken");
+    for (const auto& a : s.written_actors)
+      if (a.name.rfind(c.name + "_", 0) == 0)
+        fail(c.where, "crowd '" + c.name + "' would name its walkers like actor '" + a.name + "'");
   }
   std::set<std::string> claimed;
   for (const auto& a : s.written_actors) {
@@ -671,6 +728,10 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
   s.layout = s.procedural ? generate_procedural_hall(*s.procedural, s.world_seed())
                           : load_scene_layout(scene_file);
   follow_routes(s);
+  for (const auto& c : s.crowds)
+    if (std::abs(c.lo.x()) > s.layout.length / 2 || std::abs(c.hi.x()) > s.layout.length / 2 ||
+        std::abs(c.lo.y()) > s.layout.width / 2 || std::abs(c.hi.y()) > s.layout.width / 2)
+      fail(c.where, "crowd '" + c.name + "': its area is not inside the hall");
   apply_dynamic_load(s, s.dynamic_load);
   return s;
 }

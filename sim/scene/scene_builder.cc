@@ -361,38 +361,12 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
   const bool mesh_style = scenario.actors_style == "mesh";
   MeshVariants variants(catalog);
   std::string skins;  // <skin> elements, written in a second <asset> section
-  for (const ActorSpec& a : scenario.actors) {
-    if (!is_living_actor(a.type)) continue;
-    for (const auto& p : a.path)
-      if (!inside_hall(layout, p, 0.2))
-        fail(where, "actor '" + a.name + "' has a path point outside the hall");
-    SeatPose seat;
-    const SeatPose* seat_ptr = nullptr;
-    if (a.action == "sit") {
-      for (const ActorSpec& c : scenario.actors)
-        if (c.name == a.target) {
-          seat.position = c.position;
-          seat.yaw = deg(c.yaw_deg);
-          seat.seat_height = kChairSeatHeight;
-        }
-      seat_ptr = &seat;
-    }
-    if (a.action == "push") {
-      for (const Instance& target : model.instances)
-        if (target.kind == InstanceKind::kPushable && target.name == a.target)
-          check_pusher_start(a, target, pushable_solids.at(target.name), where);
-    }
-    std::unique_ptr<Actor> actor = make_actor(a, seat_ptr);
-    const MeshVariants::Variant* variant =
-        mesh_style ? variants.pick(actor->class_name(), a.appearance) : nullptr;
-    if (variant) {
-      if (auto* human = dynamic_cast<HumanActor*>(actor.get())) human->use_mesh(variant->human);
-      if (auto* animal = dynamic_cast<QuadrupedActor*>(actor.get()))
-        animal->use_mesh(variant->animal);
-      if (auto* bird = dynamic_cast<BirdActor*>(actor.get())) bird->use_mesh(variant->animal);
-    }
-    Instance& inst = add_instance(a.name, actor->class_name(), InstanceKind::kActor,
-                                  where + ": actor '" + a.name + "'");
+  // One animated instance: a mocap body per part (geoms unless a skinned
+  // model draws it), the push plate, and the skinned model's bone bodies.
+  auto add_animated = [&](std::unique_ptr<Actor> actor, const MeshVariants::Variant* variant) {
+    const std::string name = actor->name();
+    Instance& inst = add_instance(name, actor->class_name(), InstanceKind::kActor,
+                                  where + ": actor '" + name + "'");
     inst.actor = static_cast<int>(model.actors.size());
     if (variant) inst.asset = variant->asset;
     inst.pose = actor->root_pose(0.0);
@@ -401,7 +375,7 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
     actor->pose_parts(0.0, poses);
     for (size_t i = 0; i < actor->parts().size(); ++i) {
       const BodyPart& part = actor->parts()[i];
-      const std::string body = "actor/" + a.name + "/" + part.name;
+      const std::string body = "actor/" + name + "/" + part.name;
       inst.bodies.push_back(body);
       GeomDesc g;
       g.shape = part.shape;
@@ -437,12 +411,48 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
       actor->pose_bones(0.0, poses);
       std::vector<std::string> bones;
       x << bone_bodies_xml(variant->model(), variant->body_bones(), poses,
-                           "actor/" + a.name + "/bone", bones);
+                           "actor/" + name + "/bone", bones);
       skins += skins_xml(variant->model(), variant->body_bones(), actor->mesh_scale(),
-                         variant->materials.material_names, bones, "actor/" + a.name, inst.skins);
+                         variant->materials.material_names, bones, "actor/" + name, inst.skins);
       for (auto& b : bones) inst.bodies.push_back(b);
     }
     model.actors.push_back(std::move(actor));
+  };
+  for (const ActorSpec& a : scenario.actors) {
+    if (!is_living_actor(a.type)) continue;
+    for (const auto& p : a.path)
+      if (!inside_hall(layout, p, 0.2))
+        fail(where, "actor '" + a.name + "' has a path point outside the hall");
+    SeatPose seat;
+    const SeatPose* seat_ptr = nullptr;
+    if (a.action == "sit") {
+      for (const ActorSpec& c : scenario.actors)
+        if (c.name == a.target) {
+          seat.position = c.position;
+          seat.yaw = deg(c.yaw_deg);
+          seat.seat_height = kChairSeatHeight;
+        }
+      seat_ptr = &seat;
+    }
+    if (a.action == "push") {
+      for (const Instance& target : model.instances)
+        if (target.kind == InstanceKind::kPushable && target.name == a.target)
+          check_pusher_start(a, target, pushable_solids.at(target.name), where);
+    }
+    std::unique_ptr<Actor> actor = make_actor(a, seat_ptr);
+    const MeshVariants::Variant* variant =
+        mesh_style ? variants.pick(actor->class_name(), a.appearance) : nullptr;
+    if (variant) {
+      if (auto* human = dynamic_cast<HumanActor*>(actor.get())) human->use_mesh(variant->human);
+      if (auto* animal = dynamic_cast<QuadrupedActor*>(actor.get()))
+        animal->use_mesh(variant->animal);
+      if (auto* bird = dynamic_cast<BirdActor*>(actor.get())) bird->use_mesh(variant->animal);
+    }
+    // A carrier's goods are an instance of their own class (crate, sack).
+    std::unique_ptr<Actor> goods;
+    if (auto* human = dynamic_cast<HumanActor*>(actor.get())) goods = human->make_carried_goods();
+    add_animated(std::move(actor), variant);
+    if (goods) add_animated(std::move(goods), nullptr);
   }
 
   // The RGB-D camera rides a mocap body; MuJoCo cameras look along -z.
@@ -464,6 +474,11 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
       x << "<weld body1=\"" << plate << "\" body2=\"" << target << "\" solref=\"0.02 1\"/>\n";
     x << "</equality>\n";
   }
+  // MuJoCo's stack (its broad phase pairs bodies): a crowd of skinned people
+  // has thousands of bodies, beyond what MuJoCo sizes for few dofs.
+  size_t bodies = 0;
+  for (const Instance& inst : model.instances) bodies += inst.bodies.size();
+  x << "<size nstack=\"" << 1000000 + bodies * bodies / 2 << "\"/>\n";
   x << "</mujoco>\n";
   model.xml = x.str();
   return model;

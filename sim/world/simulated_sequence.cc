@@ -8,6 +8,7 @@
 #include "common/rng.h"
 #include "common/tum_io.h"
 #include "sim/actors/actor_variation.h"
+#include "sim/actors/crowd.h"
 #include "sim/scenario/scene_layout.h"
 #include "sim/scene/obstacles.h"
 #include "sim/sensor/light.h"
@@ -112,6 +113,12 @@ SimulatedSequence::SimulatedSequence(const Scenario& scenario, GlBackend backend
                            measure_camera_clearance(scenario_, obstacles, *motion_, stamps_));
   scenario_.actors =
       vary_actors(scenario_.actors, scenario_.world_seed(), obstacles.column_clearance());
+  // Crowds: their walkers simulated once over the whole sequence, clear of
+  // each other and of the static scene.
+  const double duration = stamps_.back().first - stamps_.front().first + 1.0;
+  for (ActorSpec& walker : simulate_crowds(scenario_.crowds, scenario_.dynamic_load, duration,
+                                           scenario_.world_seed(), obstacles.column_clearance()))
+    scenario_.actors.push_back(std::move(walker));
   // A lens or non-square pixels: render a wider square-pixel canvas and
   // resample it (sim/sensor/lens.h); --ideal keeps the pixels, drops the lens.
   const LensDistortion lens = scenario_.sensor.ideal ? LensDistortion{} : scenario_.sensor.lens;

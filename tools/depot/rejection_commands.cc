@@ -65,7 +65,16 @@ void run_rejection_eval(const RejectionArgs& a) {
   std::printf("  precision      %s without boundary points\n",
               ratio_text(s.precision_without_boundary()).c_str());
   std::printf("  recall         %s\n", ratio_text(s.recall()).c_str());
+  // By the mover's class: a carried crate (an a-priori static class) beside
+  // the people, an animal no detector names.
+  for (const auto& [name, c] : result.moving_by_class)
+    std::printf("  recall %-7s %s (%ld of %ld keypoints on moving %s rejected)\n", name.c_str(),
+                ratio_text(c.recall()).c_str(), c.rejected, c.moving, name.c_str());
   if (a.json.empty()) return;
+  nlohmann::json by_class = nlohmann::json::object();
+  for (const auto& [name, c] : result.moving_by_class)
+    by_class[name] = {
+        {"moving", c.moving}, {"rejected", c.rejected}, {"recall", ratio_json(c.recall())}};
   const nlohmann::json doc = {
       {"dataset", a.dataset},
       {"keypoints", a.keypoints},
@@ -82,7 +91,8 @@ void run_rejection_eval(const RejectionArgs& a) {
       {"boundary_true_negative", s.boundary_true_negative},
       {"precision", ratio_json(s.precision())},
       {"precision_without_boundary", ratio_json(s.precision_without_boundary())},
-      {"recall", ratio_json(s.recall())}};
+      {"recall", ratio_json(s.recall())},
+      {"recall_by_class", by_class}};
   eval::write_json_file(a.json, doc);
   std::printf("  json           %s\n", a.json.c_str());
 }

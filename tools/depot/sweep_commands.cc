@@ -10,14 +10,15 @@
 #include "common/error.h"
 #include "common/image_size.h"
 #include "common/interrupt.h"
-#include "tools/depot/commands.h"
 #include "sim/scenario/shipped_scenarios.h"
-#include "tools/harness/schedule/slurm_scheduler.h"
+#include "tools/depot/commands.h"
+#include "tools/depot/sweep_file.h"
 #include "tools/harness/job/sweep_jobs.h"
 #include "tools/harness/plan/sweep_plan.h"
-#include "tools/harness/report/sweep_report.h"
-#include "tools/harness/schedule/sweep_runner.h"
 #include "tools/harness/plan/sweep_spec.h"
+#include "tools/harness/report/sweep_report.h"
+#include "tools/harness/schedule/slurm_scheduler.h"
+#include "tools/harness/schedule/sweep_runner.h"
 #include "tools/harness/schedule/sweep_status.h"
 #include "tools/system/system_spec.h"
 
@@ -37,6 +38,7 @@ struct SweepArgs {
   bool keep_data = false, plan_only = false, quiet = false, assume_queue_empty = false;
   std::vector<std::string> figures;
   std::string output;
+  std::string file;  // --file: the sweep written down (sweep_file.h)
   std::string scheduler = "local";
   harness::SlurmOptions slurm;
 };
@@ -141,6 +143,24 @@ void execute(const harness::SweepPlan& plan, const harness::SweepLayout& layout,
                           resume_command(a, layout.root) + "` retries them");
 }
 
+// The file's fields where the command line gave none.
+SweepArgs with_sweep_file(SweepArgs a, const CLI::App& cmd) {
+  if (a.file.empty()) {
+    if (a.scenarios.empty()) fail("depot sweep run", "name the scenarios, or --file F.yaml");
+    return a;
+  }
+  const SweepFile f = read_sweep_file(a.file);
+  if (a.scenarios.empty()) a.scenarios = f.scenarios;
+  if (!cmd.count("--vary")) a.vary = f.vary;
+  if (!cmd.count("--set")) a.fixed = f.fixed;
+  if (!cmd.count("--modes") && f.modes) a.modes = *f.modes;
+  if (!cmd.count("--seeds") && f.seeds) a.seeds = *f.seeds;
+  if (!cmd.count("--frames") && f.frames) a.frames = *f.frames;
+  if (!cmd.count("--width") && f.width) a.width = *f.width;
+  if (!cmd.count("--mapping") && f.mapping) a.mapping = *f.mapping;
+  return a;
+}
+
 void run_command(const SweepArgs& a) {
   const harness::SweepSpec spec = make_spec(a);
   const harness::SweepLayout layout{a.output};
@@ -161,9 +181,12 @@ void run_command(const SweepArgs& a) {
 }
 
 void add_run_options(CLI::App* cmd, SweepArgs& a) {
-  cmd->add_option("scenarios", a.scenarios, "Scenario names or YAML files")
-      ->required()
+  cmd->add_option("scenarios", a.scenarios, "Scenario names or YAML files (or --file)")
       ->default_str("");
+  cmd->add_option("--file", a.file,
+                  "A sweep file (scenarios, vary, set, modes, seeds, frames, width, mapping; "
+                  "e.g. scenarios/stress/breaking_point.yaml); options given here override it")
+      ->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", a.output, "Sweep folder (resumes when it holds this sweep)")
       ->required();
   cmd->add_option(
@@ -255,7 +278,7 @@ void register_sweep_commands(CLI::App& app) {
       "run", "Run a sweep (or resume it in the same folder) and write its report");
   add_run_options(run, *run_args);
   add_execution_options(run, *run_args);
-  run->callback([run_args] { run_command(*run_args); });
+  run->callback([run_args, run] { run_command(with_sweep_file(*run_args, *run)); });
 
   auto resume_args = std::make_shared<SweepArgs>();
   CLI::App* resume =

@@ -17,6 +17,7 @@
 #include "eval/result_plots.h"
 #include "eval/rpe.h"
 #include "eval/trajectory_plot.h"
+#include "sim/dataset/contact_sheet.h"
 #include "sim/pipeline/render_dataset.h"
 #include "sim/scenario/scenario_loader.h"
 #include "slam/detect/sim_detector_config.h"
@@ -168,6 +169,9 @@ DatasetRecord run_render_job(const SweepPlan& plan, const SweepLayout& layout,
     ++n;
   }
   record.moving_share_mean = n ? sum / n : 0.0;
+  sim::ContactSheetOptions sheet;
+  sheet.rows = 1;
+  sim::write_contact_sheet(request.dataset.output, layout.dataset_preview(job.id), sheet);
   record.render_seconds = seconds_since(start);
   write_record(layout.dataset_record(job.id), to_json(record));
   return record;

@@ -163,6 +163,9 @@ std::string SweepLayout::dataset_dir(const std::string& id) const {
 std::string SweepLayout::dataset_record(const std::string& id) const {
   return (fs::path(root) / "data" / (id + ".json")).string();
 }
+std::string SweepLayout::dataset_preview(const std::string& id) const {
+  return (fs::path(root) / "data" / (id + ".jpg")).string();
+}
 std::string SweepLayout::run_dir(const std::string& id) const {
   return (fs::path(root) / "runs" / id).string();
 }

@@ -77,10 +77,13 @@ struct SweepLayout {
   std::string spec_file() const;                            // sweep.json
   std::string dataset_dir(const std::string& id) const;     // data/<id>/
   std::string dataset_record(const std::string& id) const;  // data/<id>.json
-  std::string run_dir(const std::string& id) const;         // runs/<id>/
-  std::string run_record(const std::string& id) const;      // runs/<id>/result.json
-  std::string log_file(const std::string& job_id) const;    // logs/<id>.log
-  std::string report_dir() const;                           // report/
+  // A contact sheet of the dataset (RGB | depth | labels of one frame), kept
+  // when the dataset is removed: the report shows the worlds rendered.
+  std::string dataset_preview(const std::string& id) const;  // data/<id>.jpg
+  std::string run_dir(const std::string& id) const;          // runs/<id>/
+  std::string run_record(const std::string& id) const;       // runs/<id>/result.json
+  std::string log_file(const std::string& job_id) const;     // logs/<id>.log
+  std::string report_dir() const;                            // report/
 };
 
 // Writes sweep.json, or checks that an existing one describes the same sweep

@@ -1,10 +1,13 @@
 #include "tools/harness/report/sweep_figures.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
-#include <cstdlib>
+#include <cmath>
 #include <map>
 
 #include "eval/series_plot.h"
+#include "tools/harness/report/breaking_points.h"
 #include "tools/harness/report/sweep_tables.h"
 
 namespace depot::harness {
@@ -19,31 +22,14 @@ size_t mode_colour_index(const std::string& mode) {
   return 5;
 }
 
-// A level's position on a numeric axis (text levels keep their order).
-double level_order(const std::string& level) {
-  char* end = nullptr;
-  const double v = std::strtod(level.c_str(), &end);
-  return end != level.c_str() && *end == '\0' ? v : 0.0;
-}
-
-// Cells that differ only in parameter k, keyed by everything else.
-std::map<std::string, std::vector<size_t>> groups_along(const SweepPlan& plan, size_t k) {
-  std::map<std::string, std::vector<size_t>> groups;
-  for (size_t c = 0; c < plan.cells.size(); ++c) {
-    const SweepCell& cell = plan.cells[c];
-    std::string key = plan.spec.scenarios[cell.scenario].name;
-    for (size_t j = 0; j < cell.levels.size(); ++j)
-      if (j != k) key += " " + plan.spec.vary[j].name + "=" + cell.levels[j];
-    groups[key].push_back(c);
-  }
-  return groups;
-}
-
 // `group_index` names the file when several figures share a parameter.
+// `breaks`: where each mode (spec order) first breaks the bounds along this
+// axis, ringed on the ATE and tracked plots with their bounds drawn; empty
+// for plots that are not along a numeric parameter.
 void add_pair(const SweepPlan& plan, const SweepSummary& s, const std::vector<size_t>& cells,
               const std::vector<std::string>& levels, const std::string& x_label,
               const std::string& group, const std::string& group_index, const std::string& stem,
-              std::vector<Figure>& out) {
+              const std::vector<BreakingPoint>& breaks, std::vector<Figure>& out) {
   eval::SeriesPlot ate;
   ate.title = "ATE RMSE vs " + x_label + (group.empty() ? "" : " (" + group + ")");
   ate.x_label = x_label;
@@ -65,8 +51,13 @@ void add_pair(const SweepPlan& plan, const SweepSummary& s, const std::vector<si
   tracked.log_y = false;
   tracked.y_lo = 0.0;
   tracked.y_hi = 1.0;
+  if (!breaks.empty()) {
+    ate.thresholds.push_back({kBreakingAte, "5 cm"});
+    tracked.thresholds.push_back({kBreakingTracked, "90 %"});
+  }
   bool any_ate = false, any_rejection = false;
-  for (const std::string& mode : plan.spec.modes) {
+  for (size_t m = 0; m < plan.spec.modes.size(); ++m) {
+    const std::string& mode = plan.spec.modes[m];
     const std::string colour = eval::series_colour(mode_colour_index(mode));
     eval::PlotSeries a{mode, colour, "", {}, {}};
     eval::PlotSeries t{mode, colour, "", {}, {}};
@@ -85,6 +76,12 @@ void add_pair(const SweepPlan& plan, const SweepSummary& s, const std::vector<si
       any_ate = any_ate || e.ate_rmse.count > 0;
       any_rejection = any_rejection || e.precision_without_boundary.count > 0 || e.recall.count > 0;
     }
+    if (m < breaks.size() && breaks[m].ate >= 0)
+      ate.rings.push_back(
+          {ate.series.size(), static_cast<size_t>(breaks[m].ate), mode + " > 5 cm"});
+    if (m < breaks.size() && breaks[m].tracked >= 0)
+      tracked.rings.push_back(
+          {tracked.series.size(), static_cast<size_t>(breaks[m].tracked), mode + " < 90 %"});
     ate.series.push_back(a);
     tracked.series.push_back(t);
     if (mode != "orb") {
@@ -114,23 +111,28 @@ std::vector<Figure> sweep_figures(const SweepPlan& plan, const SweepSummary& s) 
       cells.push_back(c);
       names.push_back(plan.spec.scenarios[plan.cells[c].scenario].name);
     }
-    add_pair(plan, s, cells, names, "scenario", "", "", "scenario", out);
+    add_pair(plan, s, cells, names, "scenario", "", "", "scenario", {}, out);
     return out;
   }
   for (size_t k = 0; k < plan.spec.vary.size(); ++k) {
     const std::string& name = plan.spec.vary[k].name;
-    const auto groups = groups_along(plan, k);
+    const std::vector<SweepAxis> axes = sweep_axes(plan, k);
     size_t index = 0;
-    for (auto [group, cells] : groups) {
-      // Numeric levels in increasing order, so lines do not zigzag.
-      std::stable_sort(cells.begin(), cells.end(), [&](size_t a, size_t b) {
-        return level_order(plan.cells[a].levels[k]) < level_order(plan.cells[b].levels[k]);
-      });
-      std::vector<std::string> levels;
-      for (size_t c : cells) levels.push_back(plan.cells[c].levels[k]);
-      const bool one_group = groups.size() == 1;
-      add_pair(plan, s, cells, levels, name, one_group ? "" : group,
-               one_group ? "" : std::to_string(++index), file_safe(name), out);
+    for (const SweepAxis& axis : axes) {
+      // Dynamic load is a knob; what it gives is the moving-pixel share,
+      // measured on the datasets: each level shows both.
+      std::vector<std::string> levels = axis.levels;
+      if (name == "load") {
+        const std::vector<double> shares = moving_shares(s, axis, plan.spec.modes);
+        for (size_t i = 0; i < levels.size(); ++i)
+          if (std::isfinite(shares[i])) levels[i] += fmt::format(" ({:.0f} %)", 100 * shares[i]);
+      }
+      const std::string x_label = name == "load" ? "load (moving-pixel share measured)" : name;
+      const bool one_group = axes.size() == 1;
+      add_pair(plan, s, axis.cells, levels, x_label, one_group ? "" : axis.group,
+               one_group ? "" : std::to_string(++index), file_safe(name),
+               numeric_axis(axis) ? breaking_points(plan, s, axis) : std::vector<BreakingPoint>{},
+               out);
     }
   }
   return out;

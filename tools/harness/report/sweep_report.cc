@@ -6,6 +6,7 @@
 
 #include "common/tum_io.h"
 #include "eval/svg_document.h"
+#include "tools/harness/report/breaking_points.h"
 #include "tools/harness/report/result_table.h"
 #include "tools/harness/report/sweep_figures.h"
 #include "tools/harness/report/sweep_summary.h"
@@ -30,6 +31,9 @@ tbody tr:nth-child(even) { background: #fafafa; }
 .figure { border: 1px solid #e2e2e2; padding: 6px; background: #fff; flex: 1 1 560px; max-width: 700px; }
 .figure.wide { flex-basis: 100%; max-width: 1300px; }
 .figure svg { display: block; max-width: 100%; height: auto; }
+.world { border: 1px solid #e2e2e2; padding: 6px; background: #fff; flex: 0 1 480px; }
+.world img { display: block; max-width: 100%; height: auto; }
+.world p { margin: 4px 0 0 0; font-size: 12px; }
 .status { background: #f7f7e8; border: 1px solid #e0e0b0; padding: 8px 12px; display: inline-block; }
 code { background: #f3f3f3; padding: 1px 4px; }
 )";
@@ -109,6 +113,7 @@ ReportFiles write_sweep_report(const SweepPlan& plan, const SweepLayout& layout,
                 {"table3_ate_vs_orb.csv", ate_against_orb_table(plan, summary)},
                 {"table4_rpe_vs_orb.csv", rpe_against_orb_table(plan, summary)},
                 {"rejection.csv", rejection_table(plan, summary)},
+                {"breaking_points.csv", breaking_point_table(plan, summary)},
                 {"frames.csv", frames_table(plan, summary)},
                 {"runs.csv", runs_table(plan, summary)}};
   std::string markdown = "# Sweep report: " + layout.root + "\n\n";
@@ -137,6 +142,17 @@ ReportFiles write_sweep_report(const SweepPlan& plan, const SweepLayout& layout,
                          inline_svg(read_file(svg)) + "</div>\n";
   }
 
+  // The worlds rendered: each dataset's contact sheet, scenario and seed
+  // (a generated hall differs by seed), linked from the sweep's data folder.
+  std::string worlds_html;
+  for (const SweepJob& job : plan.jobs) {
+    if (job.kind != JobKind::kRender || !fs::is_regular_file(layout.dataset_preview(job.id)))
+      continue;
+    const std::string link = fs::relative(layout.dataset_preview(job.id), dir).generic_string();
+    worlds_html += "<div class=\"world\"><img src=\"" + eval::xml_escape(link) + "\" alt=\"\"><p>" +
+                   eval::xml_escape(job.id) + "</p></div>\n";
+  }
+
   std::string html =
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
       "<title>depot sweep report</title>\n<style>" +
@@ -151,7 +167,14 @@ ReportFiles write_sweep_report(const SweepPlan& plan, const SweepLayout& layout,
         "<h2>Trajectories (ground truth vs estimate, coloured by ATE; paper Figs. 6-7)</h2>\n"
         "<div class=\"figures\">\n" +
         trajectories_html + "</div>\n";
-  html += to_html(tables[4].table);
+  if (!worlds_html.empty())
+    html +=
+        "<h2>Worlds rendered (RGB | depth | labels of the first frame)</h2>\n"
+        "<div class=\"figures\">\n" +
+        worlds_html + "</div>\n";
+  // Every run, at the end (long: CSV and HTML only, not in tables.md).
+  for (const auto& t : tables)
+    if (std::string(t.csv) == "runs.csv") html += to_html(t.table);
   html += "</body>\n</html>\n";
   files.html = (fs::path(dir) / "report.html").string();
   write_text_file_atomic(files.html, html);
