@@ -152,7 +152,8 @@ INSTANTIATE_TEST_SUITE_P(Seeds, ProceduralHalls, ::testing::Range(1, 6),
 
 INSTANTIATE_TEST_SUITE_P(Shipped, ScenarioRegression,
                          ::testing::Values("depot_walking_xyz", "depot_walking_halfsphere",
-                                           "depot_walking_static", "depot_sitting_static"),
+                                           "depot_walking_static", "depot_sitting_static",
+                                           "depot_carry", "depot_crowd"),
                          [](const auto& info) { return info.param; });
 
 }  // namespace
