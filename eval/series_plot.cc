@@ -171,7 +171,8 @@ std::string render_series_plot_svg(const SeriesPlot& plot) {
     svg.text({right + 46, ly + 4}, s.name, legend);
   }
 
-  for (const PlotRing& r : plot.rings) {
+  for (size_t k = 0; k < plot.rings.size(); ++k) {
+    const PlotRing& r = plot.rings[k];
     if (r.series >= plot.series.size() || r.level >= n) continue;
     const PlotSeries& s = plot.series[r.series];
     const double v = s.mean[r.level];
@@ -183,7 +184,8 @@ std::string render_series_plot_svg(const SeriesPlot& plot) {
     note.size = 11;
     note.anchor = TextAnchor::kMiddle;
     note.colour = s.colour;
-    svg.text({p.x, p.y - 12}, r.label, note);
+    // Alternately above and below, so rings at one level stay readable.
+    svg.text({p.x, k % 2 ? p.y + 22 : p.y - 12}, r.label, note);
   }
 
   TextStyle label;

@@ -477,5 +477,39 @@ TEST(Sweep, PlanOnlyPrintsCommandsAShellRunsAsTheyAre) {
   EXPECT_EQ(records(work / "out").size(), 1u);
 }
 
+// A sweep written down (--file): its grid is the command line's, a scenario
+// file beside it is found from any folder, options given override it, and a
+// bad file is one error line naming it.
+TEST(Sweep, ASweepFileIsTheCommandLineWrittenDown) {
+  const fs::path work = kRoot / "sweep file";
+  fs::remove_all(work);
+  fs::create_directories(work);
+  fs::copy_file(std::string(DEPOT_SOURCE_DIR) + "/scenarios/depot_static.yaml",
+                work / "my_static.yaml");
+  std::ofstream(work / "grid.yaml") << "scenarios: [my_static.yaml, depot_walking_xyz]\n"
+                                       "vary: {load: [0, 1]}\n"
+                                       "modes: [orb, full]\nseeds: 2\nframes: 10\nwidth: 160\n";
+  const test::DepotResult plan =
+      test::depot("sweep run --file '" + (work / "grid.yaml").string() + "' -o '" +
+                  (work / "out").string() + "' --seeds 1 --plan-only");
+  ASSERT_EQ(plan.code, 0) << plan.output;
+  // 2 scenarios x 2 loads x 1 seed (the command line's) renders; orb once per
+  // dataset, full per dataset.
+  EXPECT_THAT(plan.output, ::testing::HasSubstr("depot_static__load-1__s1__full"));
+  EXPECT_THAT(plan.output, ::testing::HasSubstr("depot_walking_xyz__load-0__s1__orb"));
+  EXPECT_THAT(plan.output, ::testing::Not(::testing::HasSubstr("__s2")));
+  const std::string spec = read(work / "out" / "sweep.json");
+  EXPECT_THAT(spec, ::testing::HasSubstr((work / "my_static.yaml").string()));
+  EXPECT_THAT(spec, ::testing::HasSubstr("\"frames\": 10"));
+
+  std::ofstream(work / "bad.yaml") << "scenarios: [depot_static]\nseeds: 0\n";
+  const test::DepotResult bad = test::depot("sweep run --file '" + (work / "bad.yaml").string() +
+                                            "' -o '" + (work / "bad_out").string() + "'");
+  EXPECT_NE(bad.code, 0);
+  EXPECT_THAT(bad.output, ::testing::HasSubstr((work / "bad.yaml").string() +
+                                               ":2: 'seeds' = 0 is out of range [1, 1000]"));
+  EXPECT_FALSE(fs::exists(work / "bad_out"));
+}
+
 }  // namespace
 }  // namespace depot

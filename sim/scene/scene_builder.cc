@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -478,7 +479,9 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
   // has thousands of bodies, beyond what MuJoCo sizes for few dofs.
   size_t bodies = 0;
   for (const Instance& inst : model.instances) bodies += inst.bodies.size();
-  x << "<size nstack=\"" << 1000000 + bodies * bodies / 2 << "\"/>\n";
+  // (At most 2^27 mjtNums, 1 GB: far beyond any shipped scene.)
+  x << "<size nstack=\"" << std::min<size_t>(1000000 + bodies * bodies / 2, size_t{1} << 27)
+    << "\"/>\n";
   x << "</mujoco>\n";
   model.xml = x.str();
   return model;

@@ -39,7 +39,9 @@ std::vector<BreakingPoint> breaking_points(const SweepPlan& plan, const SweepSum
     for (size_t i = 0; i < axis.cells.size(); ++i) {
       const CellModeSummary* e = summary.find(axis.cells[i], mode);
       if (!e) continue;
-      if (b.ate < 0 && e->ate_rmse.count > 0 && e->ate_rmse.mean > kBreakingAte)
+      // No seed keeping a trajectory at all is past breaking too.
+      const bool none_kept = e->runs > 0 && e->without_trajectory == e->runs;
+      if (b.ate < 0 && ((e->ate_rmse.count > 0 && e->ate_rmse.mean > kBreakingAte) || none_kept))
         b.ate = static_cast<int>(i);
       // A run without a trajectory tracked nothing: its share counts as 0.
       if (b.tracked < 0 && e->runs > 0 && e->tracked_share.mean < kBreakingTracked)
@@ -74,7 +76,8 @@ Table breaking_point_table(const SweepPlan& plan, const SweepSummary& summary) {
       "Along each numeric varied parameter, the first level at which a mode's mean over seeds "
       "has an ATE RMSE above {:.0f} cm, and the first at which its mean tracked share falls "
       "below {:.0f} % (\"holds to\": not within the levels swept), with the moving-pixel share "
-      "measured on that level's datasets. The plots ring the same points.",
+      "measured on that level's datasets; a level where no seed kept a trajectory counts as "
+      "past both. The plots ring the same points.",
       100 * kBreakingAte, 100 * kBreakingTracked);
   t.columns = {{"axis"}, {"parameter"}, {"mode"}, {"ATE > 5 cm from"}, {"tracked < 90 % from"}};
   for (size_t k = 0; k < plan.spec.vary.size(); ++k) {

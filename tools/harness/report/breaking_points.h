@@ -27,7 +27,8 @@ struct BreakingPoint {
 bool numeric_axis(const SweepAxis& axis);
 
 // One per mode of the sweep along `axis`; a level where the mode has no
-// finished run does not count.
+// finished run does not count, one where none of its runs kept a trajectory
+// breaks both bounds.
 std::vector<BreakingPoint> breaking_points(const SweepPlan& plan, const SweepSummary& summary,
                                            const SweepAxis& axis);
 
