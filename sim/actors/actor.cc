@@ -2,6 +2,7 @@
 
 #include "common/error.h"
 #include "sim/actors/animal.h"
+#include "sim/actors/forklift.h"
 #include "sim/actors/human.h"
 #include "sim/actors/limb.h"
 
@@ -20,6 +21,7 @@ std::unique_ptr<Actor> make_actor(const ActorSpec& spec, const SeatPose* seat) {
   if (spec.type == "dog" || spec.type == "cat" || spec.type == "pig")
     return std::make_unique<QuadrupedActor>(spec);
   if (spec.type == "bird") return std::make_unique<BirdActor>(spec);
+  if (spec.type == "forklift") return std::make_unique<ForkliftActor>(spec);
   fail(spec.name, "not an animated actor type: '" + spec.type + "'");
 }
 

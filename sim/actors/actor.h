@@ -41,6 +41,9 @@ class Actor {
     (void)t;
     world_poses.clear();
   }
+  // The goods a carrier carries, as an instance of their own (carry.h);
+  // nullptr for actors that carry nothing.
+  virtual std::unique_ptr<Actor> make_carried_goods() const { return nullptr; }
   // How much a skinned model is scaled about its model origin: the
   // scenario's size factor (dynamic load); the model's own height is its
   // appearance.

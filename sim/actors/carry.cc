@@ -9,10 +9,8 @@
 namespace depot::sim {
 namespace {
 
-// The goods in front of the carrier: resting on a support this far ahead of
-// its root, held at the waist closer in.
-constexpr double kRestAhead = 0.62;
-constexpr double kHeldAhead = 0.40, kHeldHeight = 1.02;
+// A pallet's deck and the two crates on it (half extents).
+const Eigen::Vector3d kDeckHalf(0.6, 0.4, 0.07), kPalletCrateHalf(0.28, 0.2, 0.17);
 
 double smooth(double x) {
   x = std::clamp(x, 0.0, 1.0);
@@ -29,12 +27,23 @@ CarryMotion::CarryMotion(const ActorSpec& a, Path2D path, double scale)
       scale_(scale),
       pick_height_(a.pick_height),
       put_height_(a.put_height) {
+  if (a.type == "forklift") {
+    // The pallet rests just ahead of the forks' tips and rides 25 cm up.
+    rest_ahead_ = held_ahead_ = 1.25;
+    held_height_ = 0.25 + kDeckHalf.z();
+  } else {
+    // A person: goods on a support ahead, held at the waist closer in.
+    rest_ahead_ = 0.62 * scale_;
+    held_ahead_ = 0.40 * scale_;
+    held_height_ = 1.02 * scale_;
+  }
   Rng rng(derive_seed(a.appearance, 0x6361727279));
   wait_at_end_ = rng.uniform(0.5, 2.5);
   wait_at_start_ = rng.uniform(0.5, 2.5);
 }
 
 Eigen::Vector3d CarryMotion::goods_half() const {
+  if (goods_ == "pallet") return kDeckHalf;
   return goods_ == "sack" ? Eigen::Vector3d(0.2, 0.3, 0.12) : Eigen::Vector3d(0.2, 0.22, 0.17);
 }
 
@@ -83,13 +92,13 @@ Pose CarryMotion::carrier_root(double t) const {
 Pose CarryMotion::rest_pose(double distance, double height) const {
   const Pose root = ground_pose(path_.position(distance), 0.0, path_.heading(distance));
   return root * make_pose(Eigen::Matrix3d::Identity(),
-                          Eigen::Vector3d(kRestAhead * scale_, 0, height + goods_half().z()));
+                          Eigen::Vector3d(rest_ahead_, 0, height + goods_half().z()));
 }
 
 Pose CarryMotion::held_pose(double distance) const {
   const Pose root = ground_pose(path_.position(distance), 0.0, path_.heading(distance));
-  return root * make_pose(Eigen::Matrix3d::Identity(),
-                          Eigen::Vector3d(kHeldAhead, 0, kHeldHeight) * scale_);
+  return root *
+         make_pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(held_ahead_, 0, held_height_));
 }
 
 Pose CarryMotion::goods_pose(double t) const {
@@ -106,18 +115,38 @@ Pose CarryMotion::goods_pose(double t) const {
   return make_pose(rest.linear(), (1 - s.lift) * rest.translation() + s.lift * held.translation());
 }
 
+Pose CarryMotion::goods_in_carrier(double t) const {
+  return carrier_root(t).inverse() * goods_pose(t);
+}
+
 CarriedGoods::CarriedGoods(const std::string& carrier_name,
                            std::shared_ptr<const CarryMotion> motion)
     : motion_(std::move(motion)) {
   name_ = carrier_name + "_" + motion_->goods();
   class_name_ = motion_->goods();
-  const bool sack = motion_->goods() == "sack";
-  parts_.push_back({"goods", sack ? Shape::kEllipsoid : Shape::kBox, motion_->goods_half(),
-                    sack ? "sack" : "crate", false});
+  const std::string& goods = motion_->goods();
+  const Eigen::Vector3d half = motion_->goods_half();
+  if (goods == "pallet") {
+    parts_.push_back({"deck", Shape::kBox, half, "pallet", false});
+    local_.push_back(Pose::Identity());
+    for (double side : {-1.0, 1.0}) {
+      parts_.push_back({side < 0 ? "crate_a" : "crate_b", Shape::kBox, kPalletCrateHalf,
+                        side < 0 ? "crate" : "crate_dark", false});
+      local_.push_back(make_pose(Eigen::Matrix3d::Identity(),
+                                 Eigen::Vector3d(side * 0.3, 0, half.z() + kPalletCrateHalf.z())));
+    }
+  } else {
+    const bool sack = goods == "sack";
+    parts_.push_back(
+        {"goods", sack ? Shape::kEllipsoid : Shape::kBox, half, sack ? "sack" : "crate", false});
+    local_.push_back(Pose::Identity());
+  }
 }
 
 void CarriedGoods::pose_parts(double t, std::vector<Pose>& world_poses) const {
-  world_poses.assign(1, motion_->goods_pose(t));
+  const Pose goods = motion_->goods_pose(t);
+  world_poses.resize(local_.size());
+  for (size_t i = 0; i < local_.size(); ++i) world_poses[i] = goods * local_[i];
 }
 
 Pose CarriedGoods::root_pose(double t) const {
@@ -125,8 +154,13 @@ Pose CarriedGoods::root_pose(double t) const {
 }
 
 Eigen::AlignedBox3d CarriedGoods::local_extent() const {
-  const Eigen::Vector3d h = motion_->goods_half();
-  return Eigen::AlignedBox3d(-h, h);
+  Eigen::AlignedBox3d box;
+  for (size_t i = 0; i < parts_.size(); ++i) {
+    const Eigen::Vector3d h = parts_[i].size;
+    box.extend(local_[i].translation() - h);
+    box.extend(local_[i].translation() + h);
+  }
+  return box;
 }
 
 }  // namespace depot::sim

@@ -1,6 +1,7 @@
 #pragma once
-// A person carrying goods (a crate or a sack) back and forth along an open
-// path: scenario actors with `carries: crate|sack` (human.h, action carry).
+// A person carrying goods (a crate or a sack), or a forklift carrying a
+// pallet with goods, back and forth along an open path: scenario actors with
+// `carries: crate|sack|pallet` (human.h, forklift.h; action carry).
 //
 // The goods rest in front of the carrier at the path's start (on a support
 // `pick_height` m up: a pallet, a shelf, or the floor). From `start_time`
@@ -40,9 +41,13 @@ class CarryMotion {
   // The goods' pose at t (their centre; x forward of the carrier, z up).
   Pose goods_pose(double t) const;
   const std::string& goods() const { return goods_; }
-  // Half extents of the goods (crate: a box; sack: an ellipsoid).
+  // Half extents of the goods' base part (crate: a box; sack: an
+  // ellipsoid; pallet: its deck, the crates on it come on top).
   Eigen::Vector3d goods_half() const;
   double scale() const { return scale_; }
+  // The goods' pose in the carrier's root frame at t (what a forklift's
+  // forks follow).
+  Pose goods_in_carrier(double t) const;
 
  private:
   Pose rest_pose(double distance, double height) const;
@@ -50,6 +55,8 @@ class CarryMotion {
 
   Path2D path_;
   std::string goods_;
+  // Where the goods rest and are held, ahead of the carrier's root (m).
+  double rest_ahead_ = 0.62, held_ahead_ = 0.40, held_height_ = 1.02;
   double speed_ = 1.0;
   double start_time_ = 0.0;
   double scale_ = 1.0;
@@ -67,6 +74,7 @@ class CarriedGoods : public Actor {
 
  private:
   std::shared_ptr<const CarryMotion> motion_;
+  std::vector<Pose> local_;  // each part in the goods' frame
 };
 
 }  // namespace depot::sim

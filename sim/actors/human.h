@@ -28,7 +28,7 @@ class HumanActor : public Actor {
   const HumanRig* rig() const { return rig_.get(); }
 
   // The goods a carrier carries, as their own instance (nullptr for others).
-  std::unique_ptr<Actor> make_carried_goods() const;
+  std::unique_ptr<Actor> make_carried_goods() const override;
 
   // The gait at time t (what both the primitives and the rig follow).
   HumanPosture posture(double t) const;

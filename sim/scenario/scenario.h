@@ -196,7 +196,7 @@ struct ActorSpec {
   // carry: the goods a person carries out and back along its path
   // (sim/actors/carry.h): crate or sack, resting pick_height / put_height m
   // up at the path's start and end.
-  std::string carries;
+  std::string carries;  // forklift: pallet
   double pick_height = 0.0, put_height = 0.0;
   // crowd: the walker's simulated track (action "crowd"), sampled evenly.
   std::vector<TrackPoint> track;
@@ -277,5 +277,6 @@ void scale_camera(CameraIntrinsics& camera, int width);
 
 bool is_living_actor(const std::string& type);    // human and animals
 bool is_pushable_actor(const std::string& type);  // chair, cart
+bool is_vehicle_actor(const std::string& type);   // forklift
 
 }  // namespace depot::sim

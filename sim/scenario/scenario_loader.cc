@@ -26,6 +26,9 @@ bool is_living_actor(const std::string& type) {
 bool is_pushable_actor(const std::string& type) {
   return type == "chair" || type == "cart";
 }
+bool is_vehicle_actor(const std::string& type) {
+  return type == "forklift";
+}
 
 void scale_camera(CameraIntrinsics& c, int width) {
   const double s = static_cast<double>(width) / c.width;
@@ -491,9 +494,10 @@ ActorSpec read_actor(const Fields& f, size_t index, uint64_t seed) {
                 "pick_height", "put_height", "height", "appearance"});
   ActorSpec a;
   a.type = f.str("type");
-  if (!is_living_actor(a.type) && !is_pushable_actor(a.type))
+  if (!is_living_actor(a.type) && !is_pushable_actor(a.type) && !is_vehicle_actor(a.type))
     fail(f.where(f.node("type") ? f.node("type") : YAML::Node()),
-         "unknown actor type '" + a.type + "' (expected human, dog, cat, pig, bird, chair, cart)");
+         "unknown actor type '" + a.type +
+             "' (expected human, dog, cat, pig, bird, chair, cart, forklift)");
   a.name = f.str("name", a.type + "_" + std::to_string(index));
   a.path = f.path("path");
   a.route = f.str("route");
@@ -518,9 +522,11 @@ ActorSpec read_actor(const Fields& f, size_t index, uint64_t seed) {
   } else if (f.has("carries")) {
     a.action = "carry";
     a.carries = f.str("carries");
-    if (a.carries != "crate" && a.carries != "sack")
-      fail(f.where(f.node("carries")),
-           "actor '" + a.name + "' carries '" + a.carries + "' (expected crate or sack)");
+    const bool forklift = a.type == "forklift";
+    if (forklift ? a.carries != "pallet" : a.carries != "crate" && a.carries != "sack")
+      fail(f.where(f.node("carries")), "actor '" + a.name + "' carries '" + a.carries +
+                                           "' (expected " +
+                                           (forklift ? "pallet" : "crate or sack") + ")");
     a.pick_height = f.number("pick_height", 0.0, 0.0, 2.0);
     a.put_height = f.number("put_height", 0.0, 0.0, 2.0);
     // Out and back: the goods go to the path's end and come back.
@@ -536,8 +542,11 @@ ActorSpec read_actor(const Fields& f, size_t index, uint64_t seed) {
          "actor '" + a.name + "': pick_height and put_height go with 'carries'");
   static const std::set<std::string> kActions = {"walk", "fly", "sit", "push", "carry", ""};
   if (!kActions.count(a.action)) fail(f.where(), "unknown action '" + a.action + "'");
-  if ((a.action == "push" || a.action == "sit" || a.action == "carry") && a.type != "human")
+  if ((a.action == "push" || a.action == "sit" || (a.action == "carry" && a.type != "forklift")) &&
+      a.type != "human")
     fail(f.where(), "only humans can " + a.action);
+  if (is_vehicle_actor(a.type) && a.action != "carry")
+    fail(f.where(), "forklift '" + a.name + "' needs 'carries: pallet' and a 'path'");
   if ((a.action == "walk" || a.action == "fly" || a.action == "push" || a.action == "carry") &&
       a.path.size() < 2 && a.route.empty())
     fail(f.where(), "actor '" + a.name + "' needs a 'path' of at least two points or a 'route'");

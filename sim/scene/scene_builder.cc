@@ -420,7 +420,7 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
     model.actors.push_back(std::move(actor));
   };
   for (const ActorSpec& a : scenario.actors) {
-    if (!is_living_actor(a.type)) continue;
+    if (!is_living_actor(a.type) && !is_vehicle_actor(a.type)) continue;
     for (const auto& p : a.path)
       if (!inside_hall(layout, p, 0.2))
         fail(where, "actor '" + a.name + "' has a path point outside the hall");
@@ -449,9 +449,8 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
         animal->use_mesh(variant->animal);
       if (auto* bird = dynamic_cast<BirdActor*>(actor.get())) bird->use_mesh(variant->animal);
     }
-    // A carrier's goods are an instance of their own class (crate, sack).
-    std::unique_ptr<Actor> goods;
-    if (auto* human = dynamic_cast<HumanActor*>(actor.get())) goods = human->make_carried_goods();
+    // A carrier's goods are an instance of their own class (crate, sack, pallet).
+    std::unique_ptr<Actor> goods = actor->make_carried_goods();
     add_animated(std::move(actor), variant);
     if (goods) add_animated(std::move(goods), nullptr);
   }
