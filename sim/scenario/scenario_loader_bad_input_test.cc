@@ -48,6 +48,42 @@ TEST(ScenarioBadInput, AValueQuotedWithItsLineBreaksIsStillOneLine) {
   std::filesystem::remove(path);
 }
 
+// #27's actors: carriers, the forklift and crowds, each mistake one line.
+TEST(ScenarioBadInput, CarriersForkliftsAndCrowdsMistakesAreOneErrorEach) {
+  const std::string path = write_scenario("carry.yaml", "name: x\nmotion: {type: static}\n");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"actors=[{type: forklift, path: [[0, 0], [1, 0]]}]",
+       "forklift 'forklift_0' needs 'carries: pallet' and a 'path'"},
+      {"actors=[{type: human, carries: pallet, path: [[0, 0], [1, 0]]}]",
+       "actor 'human_0' carries 'pallet' (expected crate or sack)"},
+      {"actors=[{type: forklift, carries: crate, path: [[0, 0], [1, 0]]}]",
+       "actor 'forklift_0' carries 'crate' (expected pallet)"},
+      {"actors=[{type: human, carries: crate, loop: true, path: [[0, 0], [1, 0]]}]",
+       "carries its goods out and back: 'loop' must be false"},
+      {"actors=[{type: dog, carries: crate, path: [[0, 0], [1, 0]]}]", "only humans can carry"},
+      {"actors=[{type: human, pick_height: 1, path: [[0, 0], [1, 0]]}]",
+       "pick_height and put_height go with 'carries'"},
+      {"actors=[{type: human, carries: crate, pick_height: 3, path: [[0, 0], [1, 0]]}]",
+       "'pick_height' = 3 is out of range [0, 2]"},
+      {"crowds=[{name: c, count: 5, area: [[1, 1], [0, 0]]}]",
+       "crowd 'c': 'area' must be [[x_min, y_min], [x_max, y_max]]"},
+      {"crowds=[{name: c, area: [[0, 0], [30, 1]]}]", "crowd 'c': its area is not inside the hall"},
+      {"crowds=[{name: c, area: [[0, 0], [1, 1]], goals: home}]",
+       "crowd 'c': unknown goals 'home' (expected ends or anywhere)"},
+      {"crowds=[{name: c, area: [[0, 0], [1, 1]], speed: [2, 1]}]",
+       "crowd 'c': 'speed' must be [low, high] m/s within [0.2, 2.5]"},
+  };
+  for (const auto& [set, expected] : cases) {
+    const size_t eq = set.find('=');
+    const std::string error = error_of([&] {
+      load_scenario(path, {{set.substr(0, eq), set.substr(eq + 1)}});
+    });
+    EXPECT_THAT(error, ::testing::HasSubstr(expected)) << set;
+    EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+  }
+  std::filesystem::remove(path);
+}
+
 TEST(ScenarioBadInput, ShutterTimesOutOfRangeAreOneError) {
   const std::string negative = write_scenario(
       "exposure.yaml", "name: x\nmotion: {type: static}\nsensor: {exposure: -0.01}\n");
