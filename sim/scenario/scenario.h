@@ -178,6 +178,21 @@ struct CrowdSpec {
   std::string where;  // its entry (file:line), for errors found later
 };
 
+// `doors`: hinged doors that swing open and shut (sim/actors/door.h).
+struct DoorSpec {
+  std::string name;
+  Eigen::Vector2d hinge{0, 0};       // m, hall coordinates: the hinge's foot
+  double yaw_deg = 0.0;              // the shut leaf's direction from the hinge
+  double width = 1.0, height = 2.1;  // m
+  double swing_deg = 90.0;           // open angle, counter-clockwise seen from above
+  // [time s, share open 0..1], times ascending, linear between. Empty: seeded
+  // timing, shut for a time drawn in `shut`, then open for one drawn in
+  // `open` (s), and again; each swing takes kDoorSwing s.
+  std::vector<Eigen::Vector2d> events;
+  Eigen::Vector2d shut{3.0, 6.0}, open{2.0, 4.0};
+  std::string where;  // its entry (file:line), for errors found later
+};
+
 struct ActorSpec {
   std::string name;
   std::string type;  // human, dog, cat, pig, bird, chair, cart
@@ -266,7 +281,8 @@ struct Scenario {
     std::string where;             // its entry (file:line), for errors found later
   };
   std::vector<Opening> openings;
-  std::vector<CrowdSpec> crowds;          // walkers simulated when the world is built
+  std::vector<CrowdSpec> crowds;  // walkers simulated when the world is built
+  std::vector<DoorSpec> doors;
   std::vector<ActorSpec> written_actors;  // as in the file
   std::vector<ActorSpec> actors;          // after dynamic-load scaling
 };

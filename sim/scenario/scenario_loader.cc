@@ -381,6 +381,46 @@ void check_shutter_fits_frame(const Fields& top, const Scenario& s) {
 }
 
 // `lamps: [{near: [x, y], events: [[t, level], ...]}, ...]`.
+// `doors:` entries (sim/actors/door.h).
+std::vector<DoorSpec> read_doors(const Fields& top, const Source& source) {
+  const YAML::Node n = top.node("doors");
+  if (!n.IsSequence())
+    fail(top.where(n),
+         "'doors' must be a list of {name, hinge, yaw_deg, width, height, "
+         "swing_deg, events | shut, open}");
+  std::vector<DoorSpec> doors;
+  for (const auto& node : n) {
+    Fields f(node, source, "a door");
+    f.allow_only(
+        {"name", "hinge", "yaw_deg", "width", "height", "swing_deg", "events", "shut", "open"});
+    DoorSpec d;
+    d.where = f.where();
+    d.name = f.str("name", "door_" + std::to_string(doors.size() + 1));
+    if (!f.has("hinge")) fail(d.where, "door '" + d.name + "' needs 'hinge: [x, y]'");
+    d.hinge = f.vec2("hinge", d.hinge);
+    d.yaw_deg = f.number("yaw_deg", d.yaw_deg, -360.0, 360.0);
+    d.width = f.number("width", d.width, 0.4, 4.0);
+    d.height = f.number("height", d.height, 1.0, 4.0);
+    d.swing_deg = f.number("swing_deg", d.swing_deg, -180.0, 180.0);
+    if (f.has("events")) {
+      if (f.has("shut") || f.has("open"))
+        fail(f.where(f.node("events")),
+             "door '" + d.name + "' takes 'events' or seeded 'shut' and 'open' times, not both");
+      d.events = read_events(f, "events", "a door event", "a door's share open", "share", 1.0);
+      if (d.events.empty()) fail(f.where(f.node("events")), "door '" + d.name + "': no events");
+    }
+    for (const char* key : {"shut", "open"}) {
+      Eigen::Vector2d& r = std::string(key) == "shut" ? d.shut : d.open;
+      r = f.vec2(key, r);
+      if (!(r.x() >= 0.2 && r.x() <= r.y() && r.y() <= 600))
+        fail(f.where(f.node(key)),
+             "door '" + d.name + "': '" + key + "' must be [low, high] s within [0.2, 600]");
+    }
+    doors.push_back(d);
+  }
+  return doors;
+}
+
 // `crowds:` entries (sim/actors/crowd.h simulates them with the world).
 std::vector<CrowdSpec> read_crowds(const Fields& top, const Source& source) {
   const YAML::Node n = top.node("crowds");
@@ -647,7 +687,7 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
                   "seed_world",   "frames",      "shadows",       "dynamic_load", "style",
                   "actors_style", "props_style", "asset_catalog", "camera",       "motion",
                   "timestamps",   "sensor",      "camera_cover",  "lamps",        "openings",
-                  "actors",       "hall",        "crowds"});
+                  "actors",       "hall",        "crowds",        "doors"});
 
   Scenario s;
   s.source_path = path;
@@ -710,11 +750,14 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
       s.written_actors.push_back(read_actor(Fields(node, source, "actor"), i++, s.seed));
   }
   if (top.has("crowds")) s.crowds = read_crowds(top, source);
+  if (top.has("doors")) s.doors = read_doors(top, source);
   // Cross-references: unique names, push/sit targets exist and are pushables.
   std::set<std::string> names;
   for (const auto& a : s.written_actors) {
     if (!names.insert(a.name).second) fail(path, "duplicate actor name '" + a.name + "'");
   }
+  for (const auto& d : s.doors)
+    if (!names.insert(d.name).second) fail(d.where, "door name '" + d.name + "' is taken");
   for (const auto& c : s.crowds) {
     if (!names.insert(c.name).second) fail(c.where, "crowd name '" + c.name + "' is taken");
     for (const auto& a : s.written_actors)
@@ -741,6 +784,10 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
     if (std::abs(c.lo.x()) > s.layout.length / 2 || std::abs(c.hi.x()) > s.layout.length / 2 ||
         std::abs(c.lo.y()) > s.layout.width / 2 || std::abs(c.hi.y()) > s.layout.width / 2)
       fail(c.where, "crowd '" + c.name + "': its area is not inside the hall");
+  for (const auto& d : s.doors)
+    if (std::abs(d.hinge.x()) > s.layout.length / 2 || std::abs(d.hinge.y()) > s.layout.width / 2 ||
+        d.height > s.layout.height)
+      fail(d.where, "door '" + d.name + "' is not inside the hall");
   apply_dynamic_load(s, s.dynamic_load);
   return s;
 }

@@ -48,8 +48,8 @@ TEST(ScenarioBadInput, AValueQuotedWithItsLineBreaksIsStillOneLine) {
   std::filesystem::remove(path);
 }
 
-// #27's actors: carriers, the forklift and crowds, each mistake one line.
-TEST(ScenarioBadInput, CarriersForkliftsAndCrowdsMistakesAreOneErrorEach) {
+// #27's actors: carriers, the forklift, crowds and doors, each mistake one line.
+TEST(ScenarioBadInput, CarriersForkliftsCrowdsAndDoorsMistakesAreOneErrorEach) {
   const std::string path = write_scenario("carry.yaml", "name: x\nmotion: {type: static}\n");
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"actors=[{type: forklift, path: [[0, 0], [1, 0]]}]",
@@ -72,6 +72,15 @@ TEST(ScenarioBadInput, CarriersForkliftsAndCrowdsMistakesAreOneErrorEach) {
        "crowd 'c': unknown goals 'home' (expected ends or anywhere)"},
       {"crowds=[{name: c, area: [[0, 0], [1, 1]], speed: [2, 1]}]",
        "crowd 'c': 'speed' must be [low, high] m/s within [0.2, 2.5]"},
+      {"doors=[{name: d}]", "door 'd' needs 'hinge: [x, y]'"},
+      {"doors=[{name: d, hinge: [30, 0]}]", "door 'd' is not inside the hall"},
+      {"doors=[{name: d, hinge: [0, 0], events: [[1, 0], [2, 1.5]]}]",
+       "a door's share open must be within [0, 1]"},
+      {"doors=[{name: d, hinge: [0, 0], shut: [5, 1]}]",
+       "door 'd': 'shut' must be [low, high] s within [0.2, 600]"},
+      {"doors=[{name: d, hinge: [0, 0], events: [[1, 0]], open: [1, 2]}]",
+       "takes 'events' or seeded 'shut' and 'open' times, not both"},
+      {"doors=[{name: d, hinge: [0, 0], width: 9}]", "'width' = 9 is out of range [0.4, 4]"},
   };
   for (const auto& [set, expected] : cases) {
     const size_t eq = set.find('=');

@@ -15,6 +15,7 @@
 #include "common/error.h"
 #include "common/rng.h"
 #include "sim/actors/animal.h"
+#include "sim/actors/door.h"
 #include "sim/actors/human.h"
 #include "sim/actors/limb.h"
 #include "sim/assets/asset_catalog.h"
@@ -454,6 +455,9 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
     add_animated(std::move(actor), variant);
     if (goods) add_animated(std::move(goods), nullptr);
   }
+  // Doors that swing open and shut: animated leaves.
+  for (const DoorSpec& d : scenario.doors)
+    add_animated(std::make_unique<DoorActor>(d, scenario.world_seed()), nullptr);
 
   // The RGB-D camera rides a mocap body; MuJoCo cameras look along -z.
   const double fovy = 2.0 * std::atan(cam.height / 2.0 / cam.f) * 180.0 / M_PI;
