@@ -12,6 +12,16 @@ Pose ground_pose(const Eigen::Vector2d& xy, double z, double yaw) {
   return make_pose(rot_z(yaw), Eigen::Vector3d(xy.x(), xy.y(), z));
 }
 
+Eigen::AlignedBox3d parts_extent(const std::vector<BodyPart>& parts,
+                                 const std::vector<Pose>& local) {
+  Eigen::AlignedBox3d box;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    box.extend(local[i].translation() - parts[i].size);
+    box.extend(local[i].translation() + parts[i].size);
+  }
+  return box;
+}
+
 Path2D actor_path(const ActorSpec& spec) {
   return Path2D(spec.path, spec.loop, spec.type == "bird" ? 0.8 : 0.5, spec.lane);
 }

@@ -69,6 +69,11 @@ std::unique_ptr<Actor> make_actor(const ActorSpec& spec, const SeatPose* seat);
 // wider), including its lane offset.
 Path2D actor_path(const ActorSpec& spec);
 
+// The bounds of rigid parts placed at `local` poses (their centres; a part's
+// size taken as half extents, unrotated), e.g. a vehicle's or a pallet's.
+Eigen::AlignedBox3d parts_extent(const std::vector<BodyPart>& parts,
+                                 const std::vector<Pose>& local);
+
 // Root pose on the ground: position (x, y), heading yaw about +z.
 Pose ground_pose(const Eigen::Vector2d& xy, double z, double yaw);
 

@@ -84,20 +84,21 @@ CarryState CarryMotion::at(double t) const {
   return s;  // (rounding at the cycle's end) back at the start
 }
 
+Pose CarryMotion::root_at(double distance) const {
+  return ground_pose(path_.position(distance), 0.0, path_.heading(distance));
+}
+
 Pose CarryMotion::carrier_root(double t) const {
-  const double d = at(t).distance;
-  return ground_pose(path_.position(d), 0.0, path_.heading(d));
+  return root_at(at(t).distance);
 }
 
 Pose CarryMotion::rest_pose(double distance, double height) const {
-  const Pose root = ground_pose(path_.position(distance), 0.0, path_.heading(distance));
-  return root * make_pose(Eigen::Matrix3d::Identity(),
-                          Eigen::Vector3d(rest_ahead_, 0, height + goods_half().z()));
+  return root_at(distance) * make_pose(Eigen::Matrix3d::Identity(),
+                                       Eigen::Vector3d(rest_ahead_, 0, height + goods_half().z()));
 }
 
 Pose CarryMotion::held_pose(double distance) const {
-  const Pose root = ground_pose(path_.position(distance), 0.0, path_.heading(distance));
-  return root *
+  return root_at(distance) *
          make_pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(held_ahead_, 0, held_height_));
 }
 
@@ -154,13 +155,7 @@ Pose CarriedGoods::root_pose(double t) const {
 }
 
 Eigen::AlignedBox3d CarriedGoods::local_extent() const {
-  Eigen::AlignedBox3d box;
-  for (size_t i = 0; i < parts_.size(); ++i) {
-    const Eigen::Vector3d h = parts_[i].size;
-    box.extend(local_[i].translation() - h);
-    box.extend(local_[i].translation() + h);
-  }
-  return box;
+  return parts_extent(parts_, local_);
 }
 
 }  // namespace depot::sim

@@ -50,6 +50,7 @@ class CarryMotion {
   Pose goods_in_carrier(double t) const;
 
  private:
+  Pose root_at(double distance) const;  // the carrier on its path
   Pose rest_pose(double distance, double height) const;
   Pose held_pose(double distance) const;
 

@@ -64,11 +64,7 @@ void ForkliftActor::pose_parts(double t, std::vector<Pose>& world_poses) const {
 }
 
 Eigen::AlignedBox3d ForkliftActor::local_extent() const {
-  Eigen::AlignedBox3d box;
-  for (size_t i = 0; i < parts_.size(); ++i) {
-    box.extend(local_[i].translation() - parts_[i].size);
-    box.extend(local_[i].translation() + parts_[i].size);
-  }
+  Eigen::AlignedBox3d box = parts_extent(parts_, local_);
   box.extend(Eigen::Vector3d(0.9 + kForkHalfLength, 0, 0.6));  // the forks at their highest
   return box;
 }

@@ -781,12 +781,10 @@ Scenario load_scenario(const std::string& path, const std::vector<YamlOverride>&
                           : load_scene_layout(scene_file);
   follow_routes(s);
   for (const auto& c : s.crowds)
-    if (std::abs(c.lo.x()) > s.layout.length / 2 || std::abs(c.hi.x()) > s.layout.length / 2 ||
-        std::abs(c.lo.y()) > s.layout.width / 2 || std::abs(c.hi.y()) > s.layout.width / 2)
+    if (!s.layout.contains(c.lo) || !s.layout.contains(c.hi))
       fail(c.where, "crowd '" + c.name + "': its area is not inside the hall");
   for (const auto& d : s.doors)
-    if (std::abs(d.hinge.x()) > s.layout.length / 2 || std::abs(d.hinge.y()) > s.layout.width / 2 ||
-        d.height > s.layout.height)
+    if (!s.layout.contains(d.hinge) || d.height > s.layout.height)
       fail(d.where, "door '" + d.name + "' is not inside the hall");
   apply_dynamic_load(s, s.dynamic_load);
   return s;

@@ -107,7 +107,7 @@ SceneLayout load_scene_layout(const std::string& path) {
     if (p.size() != 2 || !std::isfinite(p[0]) || !std::isfinite(p[1]))
       fail(yaml_where(path, n), "object '" + o.name + "' needs position [x, y]");
     o.position = {p[0], p[1]};
-    if (std::abs(p[0]) > layout.length / 2 || std::abs(p[1]) > layout.width / 2)
+    if (!layout.contains(o.position))
       fail(yaml_where(path, n), "object '" + o.name + "' is outside the hall");
     o.yaw_deg = fields.get<double>("yaw_deg", 0.0);
     o.z = fields.get<double>("z", 0.0);

@@ -3,6 +3,7 @@
 // in it and named routes through it. Read from a layout file (scenes/depot.yaml)
 // or generated from a seed (sim/scenario/procedural_hall.h); the scene builder
 // turns it into MuJoCo geometry.
+#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -45,6 +46,11 @@ struct SceneLayout {
   // Named ground paths through the layout (aisle centre lines, a patrol
   // loop), for `route:` in a scenario's motion and actors.
   std::map<std::string, std::vector<Eigen::Vector2d>> routes;
+
+  // Whether a floor point lies in the hall, at least `margin` m from its walls.
+  bool contains(const Eigen::Vector2d& p, double margin = 0.0) const {
+    return std::abs(p.x()) <= length / 2 - margin && std::abs(p.y()) <= width / 2 - margin;
+  }
 };
 
 // Throws depot::Error "<file>:<line>: <problem>" for bad layouts.

@@ -7,25 +7,19 @@
 #include <gtest/gtest.h>
 
 #include "sim/scenario/procedural_hall.h"
+#include "sim/scenario/scenario_loader.h"
+#include "sim/scenario/shipped_scenarios.h"
 #include "sim/scene/depot_objects.h"
 #include "sim/scene/obstacles.h"
 
 namespace depot::sim {
 namespace {
 
+// The hall of the shipped scenarios/depot_procedural_patrol.yaml.
 ProceduralHallSpec shipped_ranges() {
-  // scenarios/depot_procedural_patrol.yaml's hall.
-  ProceduralHallSpec s;
-  s.length = {18, 26, ""};
-  s.width = {17, 21, ""};
-  s.height = {4.5, 6, ""};
-  s.rack_rows = {1, 2, ""};
-  s.aisle_width = {2.6, 3.2, ""};
-  s.rack_length = {2.2, 3.0, ""};
-  s.rack_levels = {3, 5, ""};
-  s.cross_aisle = {3.0, 4.0, ""};
-  s.clutter = {0.4, 0.9, ""};
-  return s;
+  const Scenario s = load_scenario(resolve_scenario("depot_procedural_patrol"));
+  EXPECT_TRUE(s.procedural);
+  return *s.procedural;
 }
 
 TEST(ProceduralHallGeometry, EveryRouteKeepsTheRobotClearOfTheStaticScene) {

@@ -124,10 +124,6 @@ std::string png_bytes(const cv::Mat& bgr) {
   return std::string(buf.begin(), buf.end());
 }
 
-bool inside_hall(const SceneLayout& l, const Eigen::Vector2d& p, double margin = 0.0) {
-  return std::abs(p.x()) <= l.length / 2 - margin && std::abs(p.y()) <= l.width / 2 - margin;
-}
-
 // A pusher must start with its push plate clear of its chair or cart, at the
 // largest size its appearance can give: a plate inside the target at t = 0
 // flings it away while physics settles, before the first frame. `solid` is
@@ -328,7 +324,7 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
   const std::string where = scenario.source_path;
   for (const ActorSpec& a : scenario.actors) {
     if (!is_pushable_actor(a.type)) continue;
-    if (!inside_hall(layout, a.position, 0.3))
+    if (!layout.contains(a.position, 0.3))
       fail(where, "actor '" + a.name + "' is outside the hall");
     InstanceGeometry g =
         build_pushable(a.type, a.name, derive_seed(scenario.world_seed(), a.appearance));
@@ -423,7 +419,7 @@ SceneModel build_scene(const SceneLayout& layout, const ClassTable& classes,
   for (const ActorSpec& a : scenario.actors) {
     if (!is_living_actor(a.type) && !is_vehicle_actor(a.type)) continue;
     for (const auto& p : a.path)
-      if (!inside_hall(layout, p, 0.2))
+      if (!layout.contains(p, 0.2))
         fail(where, "actor '" + a.name + "' has a path point outside the hall");
     SeatPose seat;
     const SeatPose* seat_ptr = nullptr;
