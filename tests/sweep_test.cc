@@ -186,6 +186,20 @@ TEST(Sweep, RefusesBadGridsBeforeRunningAnything) {
       test::depot("sweep run depot_walking_xyz -o " + sweep.string() + " --vary load=0,9");
   EXPECT_NE(range.code, 0);
   EXPECT_THAT(range.output, ::testing::HasSubstr("dynamic")) << range.output;
+  const test::DepotResult detector = test::depot("sweep run depot_walking_xyz -o " +
+                                                 sweep.string() + " --vary detector=sim,yolo9");
+  EXPECT_NE(detector.code, 0);
+  EXPECT_THAT(detector.output,
+              ::testing::HasSubstr("detector=yolo9: --detector: unknown detector 'yolo9'"))
+      << detector.output;
+  const test::DepotResult sim_only =
+      test::depot("sweep run depot_walking_xyz -o " + sweep.string() +
+                  " --vary detector=sim,darknet --set miss_rate=0.1");
+  EXPECT_NE(sim_only.code, 0);
+  EXPECT_THAT(sim_only.output,
+              ::testing::HasSubstr("detector.miss_rate applies to the simulated detector only, "
+                                   "not to detector=darknet"))
+      << sim_only.output;
   EXPECT_FALSE(fs::exists(sweep / "sweep.json"));
   const test::DepotResult missing = test::depot("sweep resume " + (kRoot / "nowhere").string());
   EXPECT_NE(missing.code, 0);

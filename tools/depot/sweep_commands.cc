@@ -192,8 +192,8 @@ void add_run_options(CLI::App* cmd, SweepArgs& a) {
   cmd->add_option(
          "--vary", a.vary,
          "PARAM=L1,L2,...: load, depth_noise, rgb_noise, exposure, readout, distortion (k1), "
-         "miss_rate, latency, scenario.KEY, detector.KEY, rejection.KEY (repeatable: the grid is "
-         "the product)")
+         "miss_rate, latency, detector (sim, darknet, xl, fastestdet, yolov5), scenario.KEY, "
+         "detector.KEY, rejection.KEY (repeatable: the grid is the product)")
       ->default_str("");
   cmd->add_option("--set", a.fixed, "PARAM=VALUE for every run (same names as --vary)")
       ->default_str("");

@@ -20,6 +20,7 @@
 #include "sim/dataset/contact_sheet.h"
 #include "sim/pipeline/render_dataset.h"
 #include "sim/scenario/scenario_loader.h"
+#include "slam/detect/detector_config.h"
 #include "slam/detect/sim_detector_config.h"
 #include "slam/io/frame_states_file.h"
 #include "slam/reject/rejection_settings.h"
@@ -30,6 +31,14 @@ namespace fs = std::filesystem;
 
 namespace depot::harness {
 namespace {
+
+// The cell's `detector` level; sweeps render simulated datasets, so "sim"
+// when the sweep does not name one.
+std::string cell_detector(const SweepPlan& plan, const SweepCell& cell) {
+  const std::vector<YamlOverride> choice =
+      cell_overrides(plan, cell, ParameterTarget::kDetectorChoice);
+  return choice.empty() ? "sim" : choice.front().value;
+}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -128,10 +137,23 @@ void check_sweep_inputs(const SweepPlan& plan) {
       // Name the sweep's levels too: an override's error points into the file.
       fail("sweep cell " + cell.label, e.what());
     }
-    slam::load_sim_detector_config(
-        overrides_to_node(cell_overrides(plan, cell, ParameterTarget::kDetector), "detector"),
-        cell.label + " (detector settings)",
-        runner::sim_detector_config(runner::PerceptionChoice{}));
+    const std::string detector = cell_detector(plan, cell);
+    const std::vector<YamlOverride> detector_keys =
+        cell_overrides(plan, cell, ParameterTarget::kDetector);
+    if (detector != "sim") {
+      try {  // a known detector whose files load now, not in its first job
+        slam::load_detector_config(runner::default_detector_config(detector));
+      } catch (const Error& e) {
+        fail("sweep cell " + cell.label, e.what());
+      }
+      if (!detector_keys.empty())
+        fail("sweep cell " + cell.label,
+             "detector." + detector_keys.front().key +
+                 " applies to the simulated detector only, not to detector=" + detector);
+    }
+    slam::load_sim_detector_config(overrides_to_node(detector_keys, "detector"),
+                                   cell.label + " (detector settings)",
+                                   runner::sim_detector_config(runner::PerceptionChoice{}));
     slam::RejectionParams params;
     for (const auto& s : cell_overrides(plan, cell, ParameterTarget::kRejection))
       slam::apply_rejection_setting(params, s, cell.label + " (rejection." + s.key + ")");
@@ -246,6 +268,7 @@ RunRecord run_slam_job(const SweepPlan& plan, const SweepLayout& layout, const S
   options.rejection.mode = job.mode;
   options.input.sync = plan.spec.sync_mapping;
   options.quiet = true;
+  options.perception.detector = cell_detector(plan, cell);
   options.perception.detector_seed = static_cast<uint64_t>(job.seed);
   options.perception.detector_overrides = cell_overrides(plan, cell, ParameterTarget::kDetector);
   for (const auto& setting : cell_overrides(plan, cell, ParameterTarget::kRejection))

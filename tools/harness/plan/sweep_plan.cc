@@ -31,6 +31,7 @@ bool parameter_affects_mode(const ParameterKey& parameter, const std::string& mo
     case ParameterTarget::kScenario:
       return true;
     case ParameterTarget::kDetector:
+    case ParameterTarget::kDetectorChoice:
       return slam::mode_uses_detector(m);
     case ParameterTarget::kRejection: {
       // The modes the setting acts in (slam/reject/rejection_settings.h);

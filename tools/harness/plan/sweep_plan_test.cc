@@ -73,6 +73,29 @@ TEST(SweepPlan, ParametersMatterOnlyToTheModesTheyReach) {
   EXPECT_FALSE(affects("rejection.background_margin", "masked"));
 }
 
+TEST(SweepPlan, TheDetectorIsAnAxisOfTheModesThatRunOne) {
+  SweepSpec s = grid_spec();
+  s.vary = {{"detector", {"sim", "darknet"}}};
+  s.modes = {"orb", "full", "masked"};
+  s.seeds = 1;
+  const SweepPlan plan = make_sweep_plan(s);
+  ASSERT_EQ(plan.cells.size(), 2u);
+  // One render serves both detectors; orb runs once, full and masked twice.
+  ASSERT_EQ(plan.jobs.size(), 1u + 1u + 2u * 2);
+  EXPECT_EQ(find_job(plan, "depot_walking_xyz__s1__orb", "sweep").cells,
+            (std::vector<size_t>{0, 1}));
+  const SweepJob& darknet =
+      find_job(plan, "depot_walking_xyz__detector-darknet__s1__masked", "sweep");
+  EXPECT_EQ(darknet.dataset_id, "depot_walking_xyz__s1");
+  const auto choice =
+      cell_overrides(plan, plan.cells[darknet.cell], ParameterTarget::kDetectorChoice);
+  ASSERT_EQ(choice.size(), 1u);
+  EXPECT_EQ(choice[0].value, "darknet");
+  EXPECT_TRUE(cell_overrides(plan, plan.cells[darknet.cell], ParameterTarget::kDetector).empty());
+  EXPECT_FALSE(parameter_affects_mode(resolve_parameter("detector"), "orb+lk"));
+  EXPECT_TRUE(parameter_affects_mode(resolve_parameter("detector"), "orb+yolo"));
+}
+
 TEST(SweepPlan, RefusesLevelsThatWouldShareAFolder) {
   SweepSpec s = grid_spec();
   s.vary = {{"scenario.name", {"a b", "a_b"}}};

@@ -57,6 +57,7 @@ ParameterKey resolve_parameter(const std::string& name, const std::string& where
       {"light", ParameterTarget::kScenario, "sensor.light"},
       {"miss_rate", ParameterTarget::kDetector, "miss_rate"},
       {"latency", ParameterTarget::kDetector, "latency_frames"},
+      {"detector", ParameterTarget::kDetectorChoice, "type"},
   };
   for (const auto& a : aliases)
     if (name == a.name) return {name, a.target, a.key};
@@ -66,7 +67,7 @@ ParameterKey resolve_parameter(const std::string& name, const std::string& where
   fail(where,
        "unknown parameter '" + name +
            "' (use load, depth_noise, rgb_noise, exposure, readout, distortion, light, miss_rate, "
-           "latency, scenario.KEY, detector.KEY or rejection.KEY)");
+           "latency, detector, scenario.KEY, detector.KEY or rejection.KEY)");
 }
 
 SweepParameter parse_sweep_parameter(const std::string& text, const std::string& where) {

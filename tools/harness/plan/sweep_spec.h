@@ -14,8 +14,9 @@
 namespace depot::harness {
 
 // Where a parameter acts: a key of the scenario file (rendering), of the
-// simulated detector's configuration, or of the rejection's extensions (SLAM).
-enum class ParameterTarget { kScenario, kDetector, kRejection };
+// simulated detector's configuration, which detector runs (sim or a real
+// network, `detector`), or of the rejection's extensions (SLAM).
+enum class ParameterTarget { kScenario, kDetector, kDetectorChoice, kRejection };
 
 // A parameter name as the user writes it, resolved. Accepted names:
 //   scenario.<key path>   any scenario key, e.g. scenario.sensor.rgb_noise
@@ -24,6 +25,8 @@ enum class ParameterTarget { kScenario, kDetector, kRejection };
 //                         test_static
 //   load                  = scenario.dynamic_load (number, size, speed of actors)
 //   miss_rate, latency    = detector.miss_rate, detector.latency_frames
+//   detector              which detector: sim, darknet, xl, fastestdet, yolov5
+//                         (as `slam run --detector`; detector.KEY needs sim)
 //   depth_noise, rgb_noise = scenario.sensor.disparity_noise / rgb_noise
 struct ParameterKey {
   std::string name;  // as written
