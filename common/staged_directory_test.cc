@@ -13,6 +13,7 @@
 #include "common/staged_file.h"
 #include "common/staged_names.h"
 #include "common/testing/error_of.h"
+#include "common/testing/scratch_folder.h"
 
 namespace fs = std::filesystem;
 
@@ -21,14 +22,14 @@ namespace {
 
 const OutputKind kKind{"test output", "marker.json", {"marker.json", "a.txt", "data"}};
 
-fs::path fresh(const std::string& name) {
-  fs::path p = fs::temp_directory_path() / ("depot_staged_" + name);
-  fs::remove_all(p);
-  return p;
+// A path not yet made, in the test's scratch folder.
+fs::path fresh(const testkit::ScratchFolder& scratch, const std::string& name) {
+  return scratch.path() / ("depot_staged_" + name);
 }
 
 TEST(StagedDirectory, AppearsOnlyWhenCommitted) {
-  fs::path out = fresh("commit");
+  const testkit::ScratchFolder scratch("staged_commit");
+  fs::path out = fresh(scratch, "commit");
   {
     StagedDirectory dir(out.string(), kKind, false);
     std::ofstream(fs::path(dir.path()) / "a.txt") << "x";
@@ -39,7 +40,8 @@ TEST(StagedDirectory, AppearsOnlyWhenCommitted) {
 }
 
 TEST(StagedDirectory, FailureLeavesNothing) {
-  fs::path out = fresh("abort");
+  const testkit::ScratchFolder scratch("staged_abort");
+  fs::path out = fresh(scratch, "abort");
   std::string staging;
   try {
     StagedDirectory dir(out.string(), kKind, false);
@@ -53,7 +55,8 @@ TEST(StagedDirectory, FailureLeavesNothing) {
 }
 
 TEST(StagedDirectory, RefusesNonEmptyOutputUnlessOverwrite) {
-  fs::path out = fresh("exists");
+  const testkit::ScratchFolder scratch("staged_exists");
+  fs::path out = fresh(scratch, "exists");
   fs::create_directories(out);
   std::ofstream(out / "keep.txt") << "x";
   EXPECT_THROW(StagedDirectory(out.string(), kKind, false), Error);
@@ -65,7 +68,8 @@ TEST(StagedDirectory, RefusesNonEmptyOutputUnlessOverwrite) {
 }
 
 TEST(StagedDirectory, OverwriteReplacesOnlyAnOutputOfItsKind) {
-  fs::path out = fresh("ours");
+  const testkit::ScratchFolder scratch("staged_ours");
+  fs::path out = fresh(scratch, "ours");
   fs::create_directories(out / "data");
   std::ofstream(out / "marker.json") << "{}";
   std::ofstream(out / "a.txt") << "old";
@@ -93,7 +97,8 @@ TEST(StagedDirectory, OverwriteReplacesOnlyAnOutputOfItsKind) {
 }
 
 TEST(StagedDirectory, RefusesTheCurrentFolderAndItsParents) {
-  fs::path out = fresh("cwd");
+  const testkit::ScratchFolder scratch("staged_cwd");
+  fs::path out = fresh(scratch, "cwd");
   fs::create_directories(out / "inner");
   std::ofstream(out / "marker.json") << "{}";
   const fs::path before = fs::current_path();
@@ -107,7 +112,8 @@ TEST(StagedDirectory, RefusesTheCurrentFolderAndItsParents) {
 }
 
 TEST(StagedDirectory, RemovesPartialFoldersOfDeadProcessesOnly) {
-  fs::path out = fresh("stale");
+  const testkit::ScratchFolder scratch("staged_stale");
+  fs::path out = fresh(scratch, "stale");
   const pid_t child = fork();
   if (child == 0) _exit(0);
   int status = 0;
@@ -122,11 +128,11 @@ TEST(StagedDirectory, RemovesPartialFoldersOfDeadProcessesOnly) {
     EXPECT_FALSE(fs::exists(dead));
     EXPECT_TRUE(fs::exists(live));
   }
-  fs::remove_all(live);
 }
 
 TEST(StagedDirectory, PutsBackAnOutputMovedAsideByAKilledCommit) {
-  fs::path out = fresh("aside");
+  const testkit::ScratchFolder scratch("staged_aside");
+  fs::path out = fresh(scratch, "aside");
   const pid_t child = fork();
   if (child == 0) _exit(0);
   int status = 0;
@@ -143,7 +149,8 @@ TEST(StagedDirectory, PutsBackAnOutputMovedAsideByAKilledCommit) {
 TEST(StagedDirectory, UnwritableParentIsAnError) {
   if (geteuid() == 0) {
     // root can write anywhere; use a path under a regular file instead.
-    fs::path file = fresh("file");
+    const testkit::ScratchFolder scratch("staged_file");
+    fs::path file = fresh(scratch, "file");
     std::ofstream(file) << "x";
     EXPECT_THROW(StagedDirectory((file / "out").string(), kKind, false), Error);
   } else {
@@ -160,7 +167,8 @@ namespace {
 // An error met inside a staged folder or file names a temporary path that
 // is gone once the failure unwinds; the line a user reads names the final one.
 TEST(StagedNames, ErrorsNameTheFinalPathNotTheStagedOne) {
-  const fs::path out = fresh("names");
+  const testkit::ScratchFolder scratch("staged_names");
+  const fs::path out = fresh(scratch, "names");
   std::string message;
   try {
     StagedDirectory dir(out.string(), kKind, false);

@@ -3,26 +3,17 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "common/error.h"
+#include "common/testing/scratch_folder.h"
 
 namespace fs = std::filesystem;
 
 namespace depot {
 namespace {
-
-fs::path fresh_dir(const std::string& name) {
-  fs::path p =
-      fs::temp_directory_path() / ("depot_staged_file_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(p);
-  fs::create_directories(p);
-  return p;
-}
 
 size_t entries(const fs::path& dir) {
   size_t n = 0;
@@ -31,7 +22,8 @@ size_t entries(const fs::path& dir) {
 }
 
 TEST(StagedFile, AppearsWholeOnCommitAndNotAtAllOtherwise) {
-  const fs::path dir = fresh_dir("commit");
+  const testkit::ScratchFolder scratch("staged_file_commit");
+  const fs::path& dir = scratch.path();
   const fs::path out = dir / "stats.csv";
   {
     StagedFile file(out.string());
@@ -56,7 +48,6 @@ TEST(StagedFile, AppearsWholeOnCommitAndNotAtAllOtherwise) {
   }
   EXPECT_FALSE(fs::exists(failed));
   EXPECT_EQ(entries(dir), 1u);
-  fs::remove_all(dir);
 }
 
 TEST(StagedFile, AnUnwritableFolderIsAClearError) {

@@ -4,8 +4,6 @@
 // actors following the routes of the hall its seed draws.
 #include "sim/scenario/procedural_hall.h"
 
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -15,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "common/testing/error_of.h"
+#include "common/testing/scratch_folder.h"
 #include "sim/scenario/scenario_loader.h"
 
 namespace depot::sim {
@@ -22,14 +21,6 @@ namespace {
 
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
-
-std::string temp_file(const std::string& name, const std::string& text) {
-  const std::string path = (std::filesystem::temp_directory_path() /
-                            ("depot_procedural_" + std::to_string(::getpid()) + "_" + name))
-                               .string();
-  std::ofstream(path) << text;
-  return path;
-}
 
 ProceduralHallSpec ranges() {
   ProceduralHallSpec s;
@@ -123,7 +114,8 @@ TEST(ProceduralHall, ClutterFillsTheWorkArea) {
 TEST(ProceduralHall, ALayoutWrittenOutReadsBackTheSame) {
   const SceneLayout l = generate_procedural_hall(ranges(), 2);
   const std::string text = scene_layout_yaml(l);
-  const std::string path = temp_file("scene.yaml", text);
+  const testkit::ScratchFolder scratch("procedural");
+  const std::string path = scratch.write("scene.yaml", text);
   const SceneLayout back = load_scene_layout(path);
   EXPECT_EQ(back.objects.size(), l.objects.size());
   EXPECT_EQ(back.lights.size(), l.lights.size());
@@ -131,7 +123,6 @@ TEST(ProceduralHall, ALayoutWrittenOutReadsBackTheSame) {
   SceneLayout named = back;
   named.path = l.path;
   EXPECT_EQ(scene_layout_yaml(named), text);
-  std::filesystem::remove(path);
 }
 
 TEST(ProceduralHall, BadParametersAreOneErrorNamingTheKey) {
@@ -185,7 +176,8 @@ actors:
 )";
 
 TEST(ProceduralHallScenario, MotionAndActorsFollowTheRoutesOfTheSeedsHall) {
-  const std::string path = temp_file("hall.yaml", kScenario);
+  const testkit::ScratchFolder scratch("procedural");
+  const std::string path = scratch.write("hall.yaml", kScenario);
   Scenario s = load_scenario(path);
   ASSERT_TRUE(s.procedural);
   EXPECT_EQ(s.motion.path, s.layout.routes.at("patrol"));
@@ -200,11 +192,11 @@ TEST(ProceduralHallScenario, MotionAndActorsFollowTheRoutesOfTheSeedsHall) {
   Scenario fixed = load_scenario(path, {{"seed_world", "1"}});
   set_scenario_seed(fixed, 2);
   EXPECT_EQ(scene_layout_yaml(fixed.layout), hall1);
-  std::filesystem::remove(path);
 }
 
 TEST(ProceduralHallScenario, MistakesAreOneErrorLine) {
-  const std::string path = temp_file("bad_hall.yaml", kScenario);
+  const testkit::ScratchFolder scratch("procedural");
+  const std::string path = scratch.write("bad_hall.yaml", kScenario);
   EXPECT_THAT(error_of([&] {
                 load_scenario(path, {{"hall.aisle_width", "1"}});
               }),
@@ -229,7 +221,6 @@ TEST(ProceduralHallScenario, MistakesAreOneErrorLine) {
                     path, {{"motion", "{type: waypoints, route: patrol, path: [[0, 0], [1, 1]]}"}});
               }),
               HasSubstr("motion takes a 'path' or a 'route', not both"));
-  std::filesystem::remove(path);
 }
 
 }  // namespace

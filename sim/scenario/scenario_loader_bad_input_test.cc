@@ -1,7 +1,5 @@
 // Scenario files the fuzzer made (tests/fuzz/fuzz_scenario): each is one
 // error line naming the file and line, never a yaml-cpp exception.
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -10,47 +8,40 @@
 #include <gtest/gtest.h>
 
 #include "common/testing/error_of.h"
+#include "common/testing/scratch_folder.h"
 #include "sim/scenario/scenario_loader.h"
 
 namespace depot::sim {
 namespace {
 
-std::string write_scenario(const std::string& name, const std::string& text) {
-  const std::string path = (std::filesystem::temp_directory_path() /
-                            ("depot_scenario_" + std::to_string(::getpid()) + "_" + name))
-                               .string();
-  std::ofstream(path) << text;
-  return path;
-}
-
 TEST(ScenarioBadInput, AKeyThatIsNotAPlainNameIsOneError) {
+  const testkit::ScratchFolder scratch("scenario");
   const std::string path =
-      write_scenario("map_key.yaml", "name: x\nmotion: {type: static}\n{a: 1}: 2\n");
+      scratch.write("map_key.yaml", "name: x\nmotion: {type: static}\n{a: 1}: 2\n");
   EXPECT_EQ(error_of([&] { load_scenario(path); }), path + ":3: a key must be a plain name");
-  std::filesystem::remove(path);
 }
 
 TEST(ScenarioBadInput, AFileThatIsNotAPathIsOneError) {
+  const testkit::ScratchFolder scratch("scenario");
   const std::string path =
-      write_scenario("scene_list.yaml", "name: x\nmotion: {type: static}\nscene: [a, b]\n");
+      scratch.write("scene_list.yaml", "name: x\nmotion: {type: static}\nscene: [a, b]\n");
   EXPECT_EQ(error_of([&] { load_scenario(path); }), path + ":3: bad value for 'scene'");
-  std::filesystem::remove(path);
 }
 
 // A plain scalar that runs over several lines inside a flow map keeps its
 // line breaks; the error quoting it stays one line (fuzz_scenario, stop 35).
 TEST(ScenarioBadInput, AValueQuotedWithItsLineBreaksIsStillOneLine) {
-  const std::string path =
-      write_scenario("multiline.yaml", "name: x\nmotion: {type: w\n\n\n\ne}\n");
+  const testkit::ScratchFolder scratch("scenario");
+  const std::string path = scratch.write("multiline.yaml", "name: x\nmotion: {type: w\n\n\n\ne}\n");
   const std::string error = error_of([&] { load_scenario(path); });
   EXPECT_EQ(error.find('\n'), std::string::npos) << error;
   EXPECT_THAT(error, ::testing::HasSubstr("unknown camera motion 'w\\n")) << error;
-  std::filesystem::remove(path);
 }
 
 // #27's actors: carriers, the forklift, crowds and doors, each mistake one line.
 TEST(ScenarioBadInput, CarriersForkliftsCrowdsAndDoorsMistakesAreOneErrorEach) {
-  const std::string path = write_scenario("carry.yaml", "name: x\nmotion: {type: static}\n");
+  const testkit::ScratchFolder scratch("scenario");
+  const std::string path = scratch.write("carry.yaml", "name: x\nmotion: {type: static}\n");
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"actors=[{type: forklift, path: [[0, 0], [1, 0]]}]",
        "forklift 'forklift_0' needs 'carries: pallet' and a 'path'"},
@@ -90,17 +81,16 @@ TEST(ScenarioBadInput, CarriersForkliftsCrowdsAndDoorsMistakesAreOneErrorEach) {
     EXPECT_THAT(error, ::testing::HasSubstr(expected)) << set;
     EXPECT_EQ(error.find('\n'), std::string::npos) << error;
   }
-  std::filesystem::remove(path);
 }
 
 TEST(ScenarioBadInput, ShutterTimesOutOfRangeAreOneError) {
-  const std::string negative = write_scenario(
+  const testkit::ScratchFolder scratch("scenario");
+  const std::string negative = scratch.write(
       "exposure.yaml", "name: x\nmotion: {type: static}\nsensor: {exposure: -0.01}\n");
   EXPECT_EQ(error_of([&] { load_scenario(negative); }),
             negative + ":3: 'exposure' = -0.01 is out of range [0, 0.5]");
-  std::filesystem::remove(negative);
   // A readout longer than a frame: the rows are read once per frame.
-  const std::string long_readout = write_scenario(
+  const std::string long_readout = scratch.write(
       "readout.yaml",
       "name: x\nmotion: {type: static}\nsensor: {exposure: 0.02,\n  readout: 0.04}\n");
   EXPECT_EQ(
@@ -108,7 +98,7 @@ TEST(ScenarioBadInput, ShutterTimesOutOfRangeAreOneError) {
       long_readout + ":4: sensor readout = 40.0 ms is longer than a frame (33.3 ms at 30 Hz)");
   // The same through --set, blamed on the option.
   const std::string fine =
-      write_scenario("fine.yaml", "name: x\nmotion: {type: static}\nsensor: {exposure: 0.02}\n");
+      scratch.write("fine.yaml", "name: x\nmotion: {type: static}\nsensor: {exposure: 0.02}\n");
   EXPECT_EQ(error_of([&] {
               load_scenario(fine, {{"sensor.readout", "0.04"}});
             }),
@@ -117,26 +107,24 @@ TEST(ScenarioBadInput, ShutterTimesOutOfRangeAreOneError) {
                 "(33.3 ms at 30 Hz)");
   // Together they may span more than a frame (sim/world/world.h checkpoints).
   EXPECT_NO_THROW(load_scenario(fine, {{"sensor.readout", "0.03"}}));
-  std::filesystem::remove(long_readout);
-  std::filesystem::remove(fine);
 }
 
 TEST(ScenarioBadInput, TimingAndDepthClockOutOfRangeAreOneError) {
-  const std::string far_depth = write_scenario(
+  const testkit::ScratchFolder scratch("scenario");
+  const std::string far_depth = scratch.write(
       "depth_offset.yaml", "name: x\nmotion: {type: static}\nsensor: {depth_offset: 0.02}\n");
   EXPECT_EQ(error_of([&] { load_scenario(far_depth); }),
             far_depth + ":3: sensor depth_offset = 20.0 ms is more than a quarter frame (8.3 ms)");
-  const std::string drops = write_scenario(
+  const std::string drops = scratch.write(
       "drop_rate.yaml", "name: x\nmotion: {type: static}\ntimestamps: {drop_rate: 1.5}\n");
   EXPECT_EQ(error_of([&] { load_scenario(drops); }),
             drops + ":3: 'drop_rate' = 1.5 is out of range [0, 0.9]");
-  std::filesystem::remove(far_depth);
-  std::filesystem::remove(drops);
 }
 
 // Light, exposure control, the colour pipeline and sensor profiles: each
 // mistake is one line naming the file and line.
 TEST(ScenarioBadInput, LightExposureAndColourMistakesAreOneError) {
+  const testkit::ScratchFolder scratch("scenario");
   const struct {
     std::string sensor, error;
   } cases[] = {
@@ -164,32 +152,31 @@ TEST(ScenarioBadInput, LightExposureAndColourMistakesAreOneError) {
       {"{profile: no_such_camera}", ":3: unknown sensor profile 'no_such_camera' (no "},
   };
   for (const auto& c : cases) {
-    const std::string path = write_scenario(
-        "colour.yaml", "name: x\nmotion: {type: static}\nsensor: " + c.sensor + "\n");
+    const std::string path =
+        scratch.write("colour.yaml", "name: x\nmotion: {type: static}\nsensor: " + c.sensor + "\n");
     const std::string error = error_of([&] { load_scenario(path); });
     EXPECT_EQ(error.substr(0, path.size() + c.error.size()), path + c.error) << c.sensor;
     EXPECT_EQ(error.find('\n'), std::string::npos) << error;
-    std::filesystem::remove(path);
   }
 }
 
 // A profile's keys come first; the scenario's own keys override them; a
 // mistake inside a profile names the profile's file and line.
 TEST(ScenarioBadInput, ProfilesAreReadFirstAndTheirMistakesNameTheirFile) {
-  const std::string profile = write_scenario(
+  const testkit::ScratchFolder scratch("scenario");
+  const std::string profile = scratch.write(
       "camera_profile.yaml", "# a camera\nsensor:\n  rgb_noise: 1.5\n  vignetting: 0.7\n");
-  const std::string path = write_scenario(
+  const std::string path = scratch.write(
       "profiled.yaml",
       "name: x\nmotion: {type: static}\nsensor: {profile: " + profile + ", vignetting: 0.9}\n");
   const Scenario s = load_scenario(path);
   EXPECT_DOUBLE_EQ(s.sensor.rgb_noise, 1.5);
   EXPECT_DOUBLE_EQ(s.sensor.colour.vignetting, 0.9);
-  const std::string bad = write_scenario("bad_profile.yaml", "sensor:\n  lens_blur: -1\n");
-  const std::string uses_bad = write_scenario(
+  const std::string bad = scratch.write("bad_profile.yaml", "sensor:\n  lens_blur: -1\n");
+  const std::string uses_bad = scratch.write(
       "uses_bad.yaml", "name: x\nmotion: {type: static}\nsensor: {profile: " + bad + "}\n");
   EXPECT_EQ(error_of([&] { load_scenario(uses_bad); }),
             bad + ":2: 'lens_blur' = -1 is out of range [0, 10]");
-  for (const auto& p : {profile, path, bad, uses_bad}) std::filesystem::remove(p);
 }
 
 }  // namespace

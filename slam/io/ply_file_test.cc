@@ -3,8 +3,6 @@
 // error naming the file, where assimp would pad it and go on.
 #include "slam/io/ply_file.h"
 
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -13,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "common/testing/error_of.h"
+#include "common/testing/scratch_folder.h"
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -22,12 +21,7 @@ namespace {
 
 class PlyCheckTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("depot-ply-test-" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string path(const std::string& name) const { return scratch_.file(name); }
   std::string write(const std::string& name, const std::string& bytes) const {
     std::ofstream(path(name), std::ios::binary) << bytes;
     return path(name);
@@ -42,7 +36,7 @@ class PlyCheckTest : public ::testing::Test {
     write_ply(path("cloud.ply"), points, "observations");
     return path("cloud.ply");
   }
-  fs::path dir_;
+  testkit::ScratchFolder scratch_{"ply_test"};
 };
 
 TEST_F(PlyCheckTest, AWrittenCloudPassesWithItsCounts) {

@@ -12,6 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/error.h"
+#include "common/testing/scratch_folder.h"
 #include "slam/feature/orb_extractor.h"
 #include "slam/place/vocabulary_file.h"
 #include "slam/place/vocabulary_training.h"
@@ -69,10 +70,6 @@ const Trained& trained() {
   return t;
 }
 
-std::string temp_file(const std::string& name) {
-  return (fs::temp_directory_path() / ("depot_voc_test_" + name)).string();
-}
-
 TEST(Vocabulary, TrainingIsReproducibleAndTheSeedMatters) {
   const Trained& t = trained();
   ASSERT_GE(t.images.size(), 5u);
@@ -118,12 +115,12 @@ TEST(Vocabulary, AWarpedViewIsMostSimilarToItsOwnPhoto) {
 }
 
 TEST(VocabularyFile, RoundTripKeepsTheIdentity) {
-  const std::string path = temp_file("roundtrip.voc");
+  const testkit::ScratchFolder scratch("voc_test");
+  const std::string path = scratch.file("roundtrip.voc");
   save_vocabulary(trained().vocabulary, path);
   const Vocabulary loaded = load_vocabulary(path);
   EXPECT_EQ(vocabulary_identity(loaded), vocabulary_identity(trained().vocabulary));
   EXPECT_EQ(loaded.n_words(), trained().vocabulary.n_words());
-  fs::remove(path);
 }
 
 std::string error_of(const std::string& path) {
@@ -136,7 +133,8 @@ std::string error_of(const std::string& path) {
 }
 
 TEST(VocabularyFile, BadFilesFailWithOneClearLine) {
-  const std::string good = temp_file("good.voc");
+  const testkit::ScratchFolder scratch("voc_test");
+  const std::string good = scratch.file("good.voc");
   save_vocabulary(trained().vocabulary, good);
   std::ifstream in(good, std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -144,32 +142,31 @@ TEST(VocabularyFile, BadFilesFailWithOneClearLine) {
   auto write = [](const std::string& path, const std::string& content) {
     std::ofstream(path, std::ios::binary) << content;
   };
-  const std::string missing = temp_file("missing.voc");
+  const std::string missing = scratch.file("missing.voc");
   EXPECT_THAT(error_of(missing), ::testing::HasSubstr("no such vocabulary file"));
 
-  const std::string truncated = temp_file("truncated.voc");
+  const std::string truncated = scratch.file("truncated.voc");
   write(truncated, bytes.substr(0, bytes.size() / 2));
   EXPECT_THAT(error_of(truncated), ::testing::HasSubstr("truncated")) << error_of(truncated);
 
-  const std::string corrupt = temp_file("corrupt.voc");
+  const std::string corrupt = scratch.file("corrupt.voc");
   std::string flipped = bytes;
   flipped[bytes.size() / 2] ^= 0x10;
   write(corrupt, flipped);
   EXPECT_THAT(error_of(corrupt), ::testing::HasSubstr("checksum")) << error_of(corrupt);
 
-  const std::string wide = temp_file("wide.voc");
+  const std::string wide = scratch.file("wide.voc");
   std::string other_size = bytes;
   other_size[12] = 64;  // the descriptor-bytes field
   write(wide, other_size);
   EXPECT_THAT(error_of(wide), ::testing::HasSubstr("64-byte descriptors")) << error_of(wide);
 
-  const std::string text = temp_file("text.voc");
+  const std::string text = scratch.file("text.voc");
   write(text, "# an ORB-SLAM2 text vocabulary\n10 6 0 0\n");
   EXPECT_THAT(error_of(text), ::testing::HasSubstr("not a depot vocabulary")) << error_of(text);
 
   for (const std::string& p : {missing, truncated, corrupt, wide, text})
     EXPECT_EQ(error_of(p).find('\n'), std::string::npos);
-  for (const std::string& p : {good, truncated, corrupt, wide, text}) fs::remove(p);
 }
 
 }  // namespace

@@ -26,6 +26,7 @@
 
 #include "common/error.h"
 #include "common/stale_partials.h"
+#include "common/testing/scratch_folder.h"
 #include "tools/system/system_run.h"
 #include "tools/system/system_spec.h"
 
@@ -40,11 +41,10 @@ void PrintTo(Tracking tracking, std::ostream* out) {
 
 namespace {
 
-// A folder of this test's own.
-fs::path test_folder(const std::string& tag) {
-  const fs::path p =
-      fs::temp_directory_path() / ("depot_process_tree_test_" + std::to_string(getpid())) / tag;
-  fs::remove_all(p);
+// A folder of this test's own: `tag` in the test's scratch folder, which
+// removes it with all in it when the test ends.
+fs::path test_folder(const testkit::ScratchFolder& scratch, const std::string& tag) {
+  const fs::path p = scratch.path() / tag;
   fs::create_directories(p);
   return p;
 }
@@ -125,7 +125,9 @@ class ProcessTreeTest : public testing::TestWithParam<Tracking> {
 };
 
 TEST_P(ProcessTreeTest, WhatTheSystemLeftRunningIsFoundAndKilled) {
-  const fs::path folder = test_folder(std::string("left_") + tracking_name({GetParam(), 0}));
+  const testkit::ScratchFolder scratch("process_tree_test");
+  const fs::path folder =
+      test_folder(scratch, std::string("left_") + tracking_name({GetParam(), 0}));
   // Its own session's child, one in a session of its own, a double-forked
   // one, and one that also drops the mark.
   const std::vector<std::string> sleeps = {sleep_args(1), sleep_args(2), sleep_args(3),
@@ -159,7 +161,9 @@ TEST_P(ProcessTreeTest, WhatTheSystemLeftRunningIsFoundAndKilled) {
 }
 
 TEST_P(ProcessTreeTest, StopEndsAProgramThatIgnoresSigtermAndAllItStarted) {
-  const fs::path folder = test_folder(std::string("stop_") + tracking_name({GetParam(), 0}));
+  const testkit::ScratchFolder scratch("process_tree_test");
+  const fs::path folder =
+      test_folder(scratch, std::string("stop_") + tracking_name({GetParam(), 0}));
   const std::string a = sleep_args(5), b = sleep_args(6);
   ProcessTree tree(
       shell("trap '' TERM; " + a + " & setsid " + b + " & while true; do sleep 0.05; done", folder),
@@ -178,7 +182,9 @@ TEST_P(ProcessTreeTest, StopEndsAProgramThatIgnoresSigtermAndAllItStarted) {
 // A depot killed by SIGKILL while its system runs: the program dies with it
 // (parent-death signal), what it started is stopped by the next run.
 TEST_P(ProcessTreeTest, TheNextRunStopsWhatAKilledDepotLeft) {
-  const fs::path folder = test_folder(std::string("killed_") + tracking_name({GetParam(), 0}));
+  const testkit::ScratchFolder scratch("process_tree_test");
+  const fs::path folder =
+      test_folder(scratch, std::string("killed_") + tracking_name({GetParam(), 0}));
   const std::string a = sleep_args(7), b = sleep_args(8);
   const fs::path started = folder / "started", cgroup_file = folder / "cgroup";
   const pid_t depot = fork();
@@ -222,7 +228,8 @@ INSTANTIATE_TEST_SUITE_P(Tracking, ProcessTreeTest,
                          testing::Values(Tracking::kAuto, Tracking::kProcessScan), tracking_name);
 
 TEST(ProcessTree, StaleScratchFoldersOfGoneProcessesAreRemoved) {
-  const fs::path folder = test_folder("scratch");
+  const testkit::ScratchFolder scratch("process_tree_test");
+  const fs::path folder = test_folder(scratch, "scratch");
   // A pid that is surely gone: a child that ended and was reaped.
   const pid_t gone = fork();
   if (gone == 0) _exit(0);
@@ -254,7 +261,8 @@ SystemSpec script_spec(const fs::path& folder, const std::string& name, const st
 }
 
 TEST(RunSystem, ScratchIsNamedWithThePidAndGoesWithTheRun) {
-  const fs::path folder = test_folder("scratch_run");
+  const testkit::ScratchFolder scratch("process_tree_test");
+  const fs::path folder = test_folder(scratch, "scratch_run");
   const std::string dataset = tiny_dataset(folder);
   const char* old_tmpdir = std::getenv("TMPDIR");
   const std::string saved = old_tmpdir ? old_tmpdir : "";
@@ -297,7 +305,8 @@ TEST(RunSystem, ScratchIsNamedWithThePidAndGoesWithTheRun) {
 }
 
 TEST(RunSystem, ProgressReportsTheLogsLastLineWhenTheSystemEnds) {
-  const fs::path folder = test_folder("progress");
+  const testkit::ScratchFolder scratch("process_tree_test");
+  const fs::path folder = test_folder(scratch, "progress");
   SystemRunRequest request;
   request.dataset = tiny_dataset(folder);
   request.log_path = (folder / "progress.log").string();

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include "common/testing/scratch_folder.h"
+
 namespace fs = std::filesystem;
 
 namespace depot::harness {
@@ -24,8 +26,8 @@ std::vector<StampedPose> circle() {
 }
 
 TEST(SweepJobs, AccuracyOfARunAndOfOneThatLostTheCamera) {
-  const fs::path plot = fs::temp_directory_path() / ("jobs_test_" + std::to_string(getpid()));
-  fs::create_directories(plot);
+  const testkit::ScratchFolder scratch("jobs_test");
+  const fs::path& plot = scratch.path();
   const std::vector<StampedPose> truth = circle();
 
   // The same motion in another frame (SLAM starts at the identity): ATE 0
@@ -55,7 +57,6 @@ TEST(SweepJobs, AccuracyOfARunAndOfOneThatLostTheCamera) {
   EXPECT_THAT(lost.error, ::testing::HasSubstr("too few to evaluate")) << lost.error;
   EXPECT_TRUE(std::isnan(lost.ate_rmse));
   EXPECT_FALSE(fs::exists(plot / "lost.svg"));
-  fs::remove_all(plot);
 }
 
 // The atlas's figures: half the frames in the trajectory's map, a quarter
@@ -87,13 +88,13 @@ TEST(SweepJobs, AtlasAccuracyCountsTheFramesOfEveryMap) {
   EXPECT_EQ(r.maps, 2);
   EXPECT_LT(r.ate_all_maps_rmse, 1e-9);
   // Read back from the record.
-  const fs::path file = fs::temp_directory_path() / ("atlas_record_" + std::to_string(getpid()));
+  const testkit::ScratchFolder scratch("atlas_record");
+  const fs::path file = scratch.path() / "atlas_record";
   write_record(file.string(), to_json(r));
   const RunRecord back = read_run_record(file.string());
   EXPECT_EQ(back.posed, r.posed);
   EXPECT_EQ(back.maps, 2);
   EXPECT_LT(back.ate_all_maps_rmse, 1e-9);
-  fs::remove(file);
   // Another system's states name no maps: its trajectory is all it has.
   RunRecord system;
   system.tracked = 7;
