@@ -62,6 +62,7 @@ SlamSettings load_settings(const std::string& path, const SlamSettings& defaults
       tr.number<int>("min_init_points", s.tracker.min_init_points, 10, 10000);
   s.tracker.weak_inliers = tr.number<int>("weak_inliers", s.tracker.weak_inliers, 0, 10000);
   s.tracker.atlas = tr.flag("atlas", s.tracker.atlas);
+  s.tracker.reset_keyframes = tr.number<int>("reset_keyframes", s.tracker.reset_keyframes, 0, 1000);
   const YamlFields places(root["place_recognition"], path, "place_recognition");
   if (places.has("vocabulary")) {
     s.vocabulary = resolve_config_path(places.str("vocabulary"),

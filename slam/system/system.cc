@@ -263,11 +263,19 @@ std::vector<AtlasPose> System::atlas_trajectory() const {
 }
 
 std::vector<StampedPose> System::keyframe_trajectory() const {
+  std::vector<std::vector<StampedPose>> maps = keyframe_trajectories();
+  return maps.empty() ? std::vector<StampedPose>{} : std::move(maps.front());
+}
+
+std::vector<std::vector<StampedPose>> System::keyframe_trajectories() const {
   MutexLock lock(map_.mutex());
-  const int main = main_map(tracker_.trajectory());
-  std::vector<StampedPose> out;
-  for (KeyFrame* kf : map_.keyframes())
-    if (!kf->bad && kf->map_id == main) out.push_back({kf->timestamp, kf->T_cw.inverse()});
+  const std::map<int, int> numbers = map_numbers(tracker_.trajectory());
+  std::vector<std::vector<StampedPose>> out(numbers.size());
+  for (KeyFrame* kf : map_.keyframes()) {
+    const auto number = numbers.find(kf->map_id);
+    if (!kf->bad && number != numbers.end())
+      out[number->second].push_back({kf->timestamp, kf->T_cw.inverse()});
+  }
   return out;
 }
 

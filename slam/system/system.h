@@ -100,6 +100,9 @@ class System {
   std::vector<AtlasPose> atlas_trajectory() const;
   // Keyframes of the main map.
   std::vector<StampedPose> keyframe_trajectory() const;
+  // Keyframes of every atlas map holding tracked frames, indexed by the map
+  // numbers of frame_states() (0 = main): each in its own map's frame.
+  std::vector<std::vector<StampedPose>> keyframe_trajectories() const;
   // Maps in the atlas (those with keyframes).
   int maps() const;
   size_t n_keyframes() const;

@@ -127,6 +127,13 @@ TEST(SystemStates, FramesOfAnotherMapOfTheAtlasAreNamedAndLeftOut) {
   // The mirrored place's frames are where that map put them: its first
   // frame is its origin.
   EXPECT_LT(atlas[2].pose.pose.translation().norm(), 1e-9);
+  // Keyframes by map: the mirrored place's first frame began map 1.
+  const std::vector<std::vector<StampedPose>> keyframes = system.keyframe_trajectories();
+  ASSERT_EQ(keyframes.size(), 2u);
+  ASSERT_FALSE(keyframes[1].empty());
+  EXPECT_DOUBLE_EQ(keyframes[1].front().timestamp, states[3].timestamp);
+  for (const StampedPose& k : keyframes[0]) EXPECT_NE(k.timestamp, states[3].timestamp);
+  EXPECT_EQ(system.keyframe_trajectory().size(), keyframes[0].size());
 }
 
 }  // namespace

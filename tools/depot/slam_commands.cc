@@ -252,6 +252,14 @@ void run_slam(RunArgs& a, const CLI::App& cmd) {
                                        .c_str()
                                  : "",
                 a.options.outputs.dense_map.c_str());
+  for (const auto& other : s.dense_other_maps) {
+    if (other.path.empty())
+      std::printf("dense map of atlas map %d: none (%s)\n", other.map, other.reason.c_str());
+    else
+      std::printf(
+          "dense map of atlas map %d (its own frame): %zu points from %d keyframes, wrote %s\n",
+          other.map, other.points, other.keyframes, other.path.c_str());
+  }
   if (a.options.pacing.rate_hz > 0) {
     std::printf("input %g Hz, run-ahead %s: %zu frames handled after their turn\n",
                 a.options.pacing.rate_hz, a.options.pacing.run_ahead ? "on" : "off", s.late_frames);

@@ -1,7 +1,11 @@
 #include "tools/runner/dense_map.h"
 
+#include <filesystem>
+
 #include "common/error.h"
 #include "common/staged_file.h"
+
+namespace fs = std::filesystem;
 
 namespace depot::runner {
 
@@ -82,14 +86,40 @@ void DenseMapBuilder::on_frame(const FrameRecord& frame) {
     keyframe_masks_[frame.timestamp] = filter_->moving_mask(frame.bgr.size());
 }
 
+std::string dense_map_path(const std::string& path, int map) {
+  if (map == 0) return path;
+  const fs::path p(path);
+  return (p.parent_path() /
+          (p.stem().string() + ".map" + std::to_string(map) + p.extension().string()))
+      .string();
+}
+
 void DenseMapBuilder::on_finish(const slam::System& system, const slam::RgbdSequence& sequence,
                                 RunSummary& summary) {
+  const std::vector<std::vector<StampedPose>> maps = system.keyframe_trajectories();
   const DenseMapResult cloud =
-      write_dense_map(path_, sequence, camera_, system.keyframe_trajectory(), mask_,
-                      keyframe_masks_, truth_, params_);
+      write_dense_map(path_, sequence, camera_, maps.empty() ? std::vector<StampedPose>{} : maps[0],
+                      mask_, keyframe_masks_, truth_, params_);
   summary.dense_points = cloud.points;
   summary.dense_keyframes = cloud.keyframes;
   summary.dense_left_out = cloud.without_frame + cloud.without_mask;
+  for (size_t m = 1; m < maps.size(); ++m) {
+    RunSummary::DenseMapFile file;
+    file.map = static_cast<int>(m);
+    const std::string path = dense_map_path(path_, file.map);
+    try {
+      check_output_file(path);
+      const DenseMapResult other = write_dense_map(path, sequence, camera_, maps[m], mask_,
+                                                   keyframe_masks_, truth_, params_);
+      file.path = path;
+      file.points = other.points;
+      file.keyframes = other.keyframes;
+    } catch (const Error& e) {
+      // A short-lived map may be too small to fuse: the main map still stands.
+      file.reason = e.what();
+    }
+    summary.dense_other_maps.push_back(file);
+  }
 }
 
 }  // namespace depot::runner

@@ -45,9 +45,15 @@ DenseMapResult write_dense_map(const std::string& path, const slam::RgbdSequence
                                const eval::MotionTruth* truth,
                                const slam::DenseCloudParams& params);
 
+// Where the dense map of atlas map `map` (>= 1) of a run with `--dense-map
+// path` goes: "d.ply" -> "d.map1.ply" (the main map, 0, is `path` itself).
+std::string dense_map_path(const std::string& path, int map);
+
 // `--dense-map F.ply` as an observer of the run: keeps the rejection's
 // masks of the frames made keyframes and writes the map on on_finish, at
-// the keyframes' final poses.
+// the keyframes' final poses: the main map to F.ply and each other map of
+// the atlas (frames tracked after a loss, never merged) to its own file
+// (dense_map_path), as its frame is not the main map's.
 class DenseMapBuilder : public FrameObserver {
  public:
   // Checks before any work: `path` writable, the cloud's parameters, labels

@@ -39,6 +39,16 @@ struct RunSummary {
   size_t dense_points = 0;  // points of the dense map (with dense_map)
   int dense_keyframes = 0;  // keyframes fused into it
   int dense_left_out = 0;   // keyframes left out: a loaded map's, no frame or no mask of this run
+  // The dense maps of the atlas's other maps (map 1, 2, ... as in
+  // frame_states), each in its own map's frame beside the main one.
+  struct DenseMapFile {
+    int map = 0;
+    std::string path;    // empty when the map gave no dense map
+    std::string reason;  // why not, then
+    size_t points = 0;
+    int keyframes = 0;
+  };
+  std::vector<DenseMapFile> dense_other_maps;
   std::vector<StampedPose> trajectory;                // the tracked frames only
   std::vector<slam::StampedFrameState> frame_states;  // every frame given, with its map
   // Every frame with a pose, each in its atlas map's frame (the frames of

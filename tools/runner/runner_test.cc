@@ -7,10 +7,13 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <opencv2/core.hpp>
+
 #include "common/error.h"
 #include "common/png_codec.h"
 #include "common/testing/scratch_folder.h"
 #include "tests/support/room_vocabulary.h"
+#include "tests/support/synthetic_room.h"
 #include "tools/runner/dense_map.h"
 #include "tools/runner/frame_timings.h"
 #include "tools/runner/slam_runner.h"
@@ -189,6 +192,82 @@ TEST(RunSequence, ChecksTheInputBeforeAnyWork) {
     EXPECT_THAT(e.what(), HasSubstr("per-keypoint rows need a rejection mode"));
   }
   EXPECT_FALSE(fs::exists(options.outputs.keypoints_csv));
+}
+
+// A TUM folder of room views (synthetic_room.h), PNG as a recording's.
+class RoomDataset {
+ public:
+  explicit RoomDataset(const fs::path& folder) : folder_(folder) {
+    fs::create_directories(folder / "rgb");
+    fs::create_directories(folder / "depth");
+  }
+  void add(const cv::Mat& bgr, const cv::Mat& depth_m) {
+    const std::string name = std::to_string(frames_) + ".png";
+    const double t = 1.0 + 0.1 * frames_++;
+    cv::Mat depth;
+    depth_m.convertTo(depth, CV_16U, 5000.0);  // TUM's depth scale
+    write_png((folder_ / "rgb" / name).string(), bgr, PngKind::kColor);
+    write_png((folder_ / "depth" / name).string(), depth, PngKind::kDepth);
+    rgb_ << std::fixed << t << " rgb/" << name << "\n";
+    depth_ << std::fixed << t << " depth/" << name << "\n";
+  }
+  std::string finish() {
+    std::ofstream((folder_ / "rgb.txt").string()) << rgb_.str();
+    std::ofstream((folder_ / "depth.txt").string()) << depth_.str();
+    return folder_.string();
+  }
+
+ private:
+  fs::path folder_;
+  int frames_ = 0;
+  std::ostringstream rgb_, depth_;
+};
+
+// Each map of the atlas gets its own dense map: the camera is covered and
+// then sees a place the first map never saw (the room mirrored), so a
+// second map starts there and is never merged; its cloud lies in its own
+// frame, beside the main map's file.
+TEST(DenseMapBuilder, EveryMapOfTheAtlasGetsItsOwnDenseMap) {
+  testkit::ScratchFolder scratch("dense_atlas");
+  RoomDataset dataset(scratch.path() / "room");
+  for (double yaw : {0.0, 2.0, 4.0, 6.0, 8.0}) {
+    const test::RealFrame v = test::room_view(test::turn(yaw));
+    dataset.add(v.bgr, v.depth);
+  }
+  const test::RealFrame first = test::room_view(test::turn(0));
+  dataset.add(cv::Mat(first.bgr.size(), CV_8UC3, cv::Scalar::all(90)),
+              cv::Mat(first.depth.size(), CV_32F, cv::Scalar(0)));
+  for (double yaw : {0.0, 2.0, 4.0}) {
+    const test::RealFrame v = test::room_view(test::turn(yaw));
+    cv::Mat bgr, depth;
+    cv::flip(v.bgr, bgr, 1);
+    cv::flip(v.depth, depth, 1);
+    dataset.add(bgr, depth);
+  }
+  RunOptions options;
+  options.input.dataset = dataset.finish();
+  options.input.vocabulary = test::room_vocabulary_file();
+  // Keep the young maps (ORB-SLAM2 resets a lost map of <= 5 keyframes).
+  options.input.settings =
+      scratch.write("settings.yaml", "tracking: {reset_keyframes: 0, atlas: true}\n");
+  options.input.sync = true;
+  options.quiet = true;
+  options.outputs.dense_map = scratch.file("room.ply");
+  options.outputs.dense_mask = "none";
+  options.outputs.dense.min_views = 1;
+  const RunSummary s = run_sequence(options);
+  EXPECT_EQ(s.maps, 2);
+  ASSERT_EQ(s.dense_other_maps.size(), 1u);
+  const RunSummary::DenseMapFile& other = s.dense_other_maps[0];
+  EXPECT_EQ(other.map, 1);
+  EXPECT_EQ(other.path, scratch.file("room.map1.ply")) << other.reason;
+  EXPECT_GT(other.points, 1000u);
+  EXPECT_GE(other.keyframes, 1);
+  EXPECT_GT(s.dense_points, 1000u);
+  EXPECT_TRUE(fs::exists(options.outputs.dense_map));
+  EXPECT_TRUE(fs::exists(other.path));
+  EXPECT_EQ(dense_map_path("out/d.ply", 2), "out/d.map2.ply");
+  EXPECT_EQ(dense_map_path("d.ply", 0), "d.ply");
 }
 
 }  // namespace
