@@ -16,10 +16,11 @@ cv::Point2f centre(const cv::Rect2f& r) {
 }  // namespace
 
 std::vector<TrackedBox> BoxTracker::update(const std::vector<Detection>& detections) {
-  // Predict: every track moves by its velocity.
+  // Predict: every track moves by its measured motion, else its velocity.
   for (Track& t : tracks_) {
     cv::Rect2f& b = t.detection.box;
-    const cv::Point2f c = centre(b) + t.velocity;
+    const cv::Point2f c = centre(b) + (t.measured ? t.shift : t.velocity);
+    t.measured = false;
     const float w = std::max(1.0f, b.width + t.size_velocity.width);
     const float h = std::max(1.0f, b.height + t.size_velocity.height);
     b = cv::Rect2f(c.x - w / 2, c.y - h / 2, w, h);
@@ -95,6 +96,14 @@ void BoxTracker::correct(int track_id, const cv::Rect2f& box) {
       // prediction (what is found far off may be something else).
       t.seen = iou(box, t.detection.box) >= params_.seen_min_iou;
       t.detection.box = box;
+    }
+}
+
+void BoxTracker::set_motion(int track_id, const cv::Point2f& shift) {
+  for (Track& t : tracks_)
+    if (t.id == track_id) {
+      t.measured = true;
+      t.shift = shift;
     }
 }
 

@@ -2,7 +2,8 @@
 // Missed-detection recovery: boxes tracked from frame to frame, so that an
 // object the detector misses for a few frames is still rejected. Each track
 // keeps its box and the box's velocity (image px per frame, smoothed over
-// detections: the object's and the camera's motion together); a detection
+// detections: the object's and the camera's motion together), or is moved
+// by its object's measured motion where the caller has it; a detection
 // updates the track it overlaps most (greedy by IoU, same class), a track
 // without one is carried on by its velocity for at most `max_missed` frames
 // and then dropped. The caller may re-centre a carried box on what it finds
@@ -50,6 +51,11 @@ class BoxTracker {
   // Records the object's depth (m) for the track, returned with it from the
   // next update() (a carried box's object is looked for at that depth).
   void set_depth(int track_id, float depth);
+  // The object's image motion from the last frame to the one the next
+  // update() gets, measured (e.g. the median optical flow of its
+  // keypoints): that update() moves the track's box by it instead of by
+  // the velocity of past detections, which a turning camera makes stale.
+  void set_motion(int track_id, const cv::Point2f& shift);
 
   size_t tracks() const { return tracks_.size(); }
 
@@ -63,7 +69,9 @@ class BoxTracker {
     int missed = 0;
     int detected = 0;  // detections so far
     float depth = 0;
-    bool seen = false;  // correct() was called on its last carried frame
+    bool seen = false;      // correct() was called on its last carried frame
+    bool measured = false;  // set_motion() gave the next update's shift
+    cv::Point2f shift{0, 0};
   };
   BoxTrackerParams params_;
   std::vector<Track> tracks_;

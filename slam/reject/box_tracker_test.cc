@@ -41,6 +41,28 @@ TEST(BoxTracker, BridgesAMissForKFramesThenDrops) {
 
 // A carried box whose object the caller keeps finding (correct()) lives up
 // to max_missed_seen frames; one frame without it and max_missed holds again.
+// A measured motion (the object's flow) moves the box in place of the
+// detections' velocity for one update: a camera that turned the other way.
+TEST(BoxTracker, AMeasuredMotionMovesTheBoxInsteadOfItsVelocity) {
+  BoxTracker tracker;
+  int id = 0;
+  for (int f = 0; f < 3; ++f) id = tracker.update({person_at(100 + 8.0f * f)})[0].track_id;
+  tracker.set_motion(id, {-20, 5});
+  auto boxes = tracker.update({});
+  ASSERT_EQ(boxes.size(), 1u);
+  EXPECT_NEAR(boxes[0].detection.box.x, 116 - 20, 0.5f);
+  EXPECT_NEAR(boxes[0].detection.box.y, 50 + 5, 0.5f);
+  boxes = tracker.update({});  // no measurement: the velocity again
+  ASSERT_EQ(boxes.size(), 1u);
+  EXPECT_NEAR(boxes[0].detection.box.x, 96 + 8, 0.5f);
+  // A detection where the measured motion took the object matches its track.
+  tracker.set_motion(id, {-30, 0});
+  boxes = tracker.update({person_at(60)});  // 14 px off the measured place, 52 off the velocity's
+  ASSERT_EQ(boxes.size(), 1u);
+  EXPECT_EQ(boxes[0].track_id, id);
+  EXPECT_EQ(boxes[0].missed, 0);
+}
+
 TEST(BoxTracker, ACarriedBoxStillSeenLivesLonger) {
   BoxTrackerParams params;
   params.max_missed = 2;

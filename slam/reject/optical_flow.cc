@@ -46,6 +46,21 @@ void SparseFlow::flow(const std::vector<cv::Point2f>& points, std::vector<cv::Po
   }
 }
 
+void SparseFlow::follow(const std::vector<cv::Point2f>& previous_points,
+                        std::vector<cv::Point2f>& current, std::vector<uint8_t>& ok) const {
+  current.clear();
+  ok.assign(previous_points.size(), 0);
+  if (previous_.empty() || current_.empty() || previous_points.empty()) return;
+  const cv::TermCriteria term(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, params_.iterations,
+                              0.01);
+  std::vector<uint8_t> status;
+  std::vector<float> error;
+  cv::calcOpticalFlowPyrLK(previous_, current_, previous_points, current, status, error,
+                           cv::Size(params_.window, params_.window), params_.levels, term);
+  for (size_t i = 0; i < previous_points.size(); ++i)
+    ok[i] = status[i] && error[i] <= params_.max_error;
+}
+
 void SparseFlow::refine(const std::vector<cv::Point2f>& points, std::vector<cv::Point2f>& previous,
                         std::vector<uint8_t>& ok, int window, int levels, float max_error) const {
   ok.assign(points.size(), 0);

@@ -27,6 +27,10 @@ class SparseFlow {
   // ok[i] = false where the track failed.
   void flow(const std::vector<cv::Point2f>& current_points, std::vector<cv::Point2f>& flow,
             std::vector<uint8_t>& ok) const;
+  // Where points of the previous frame are in the current one (forward LK);
+  // ok[i] = false where the track failed or its residual exceeds max_error.
+  void follow(const std::vector<cv::Point2f>& previous_points, std::vector<cv::Point2f>& current,
+              std::vector<uint8_t>& ok) const;
   // Refines where each point was in the previous frame, starting from a
   // guess and searching only `levels` pyramid levels with a small window:
   // a predicted position lets LK avoid being dragged by a nearby moving

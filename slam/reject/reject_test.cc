@@ -160,6 +160,36 @@ TEST(FlowTest, SyntheticCameraMotionPlusMovingPatch) {
   EXPECT_EQ(patch_dynamic, patch_tracked);
 }
 
+// follow(): points of the previous frame found in the current one, the
+// patch's where the patch went and the background's where the camera took it.
+TEST(SparseFlowFollow, FindsPreviousPointsWhereTheyMoved) {
+  // A patch as large as a person near the camera (120 px): LK's coarsest
+  // level (1/8) still sees it whole.
+  cv::Mat background = textured(1), patch = textured(2)(cv::Rect(0, 0, 120, 120)).clone();
+  auto frame = [&](float cam_dx, int patch_x) {
+    cv::Mat shifted;
+    cv::Mat m = (cv::Mat_<double>(2, 3) << 1, 0, cam_dx, 0, 1, 0);
+    cv::warpAffine(background, shifted, m, background.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+    patch.copyTo(shifted(cv::Rect(patch_x, 60, 120, 120)));
+    return shifted;
+  };
+  SparseFlow flow;
+  std::vector<cv::Point2f> now;
+  std::vector<uint8_t> ok;
+  flow.follow({{50, 50}}, now, ok);
+  EXPECT_EQ(ok, std::vector<uint8_t>{0}) << "no previous frame";
+  flow.next_frame(frame(0, 90));
+  flow.next_frame(frame(-4, 108));  // camera: -4 px, patch: +18 px
+  const std::vector<cv::Point2f> before = {{140, 110}, {160, 130}, {30, 30}, {290, 210}};
+  flow.follow(before, now, ok);
+  ASSERT_EQ(now.size(), before.size());
+  for (size_t i = 0; i < before.size(); ++i) {
+    ASSERT_TRUE(ok[i]) << i;
+    EXPECT_NEAR(now[i].x - before[i].x, i < 2 ? 18.0 : -4.0, 0.5) << i;
+    EXPECT_NEAR(now[i].y, before[i].y, 0.5) << i;
+  }
+}
+
 TEST(AprioriClasses, RejectsUnknownClassesAndContradictions) {
   AprioriClasses t = table();
   EXPECT_EQ(t.classify("person"), MotionClass::kDynamic);

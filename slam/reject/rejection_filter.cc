@@ -227,6 +227,7 @@ std::vector<PointSet> RejectionFilter::masked_sets(const FrameImages& images,
     if (classes_.classify(d.class_name) != MotionClass::kStatic) movable.push_back(d);
   movable.insert(movable.end(), motion_detections_.begin(), motion_detections_.end());
   motion_detections_.clear();
+  if (params_.carry_by_flow) move_tracks_by_flow();
   objects_ = box_tracker_.update(movable);
   // A motion-found object is found again while it moves; one not found is
   // still or gone, and is not carried on.
@@ -280,6 +281,25 @@ std::vector<PointSet> RejectionFilter::masked_sets(const FrameImages& images,
       if (object_set == PointSet::kZ) dynamic_object[i] = static_cast<int>(k);
     }
   }
+  if (params_.carry_by_flow) {
+    // At most kFollowed keypoints of each object, spread over it.
+    constexpr size_t kFollowed = 40;
+    object_points_.clear();
+    for (size_t k = 0; k < objects_.size(); ++k) {
+      std::vector<cv::Point2f> on;
+      for (const cv::KeyPoint& kp : keypoints) {
+        const bool on_object = masks_[k].valid()
+                                   ? masks_[k].on_object(cvRound(kp.pt.x), cvRound(kp.pt.y))
+                                   : objects_[k].detection.box.contains(kp.pt);
+        if (on_object) on.push_back(kp.pt);
+      }
+      std::vector<cv::Point2f> sample;
+      const size_t step = std::max<size_t>(1, on.size() / kFollowed);
+      for (size_t i = 0; i < on.size() && sample.size() < kFollowed; i += step)
+        sample.push_back(on[i]);
+      object_points_.emplace_back(objects_[k].track_id, std::move(sample));
+    }
+  }
   // The still-object test needs a previous frame's flow; without one a
   // dynamic object's keypoints stay in Z.
   dynamic_object_.clear();
@@ -290,6 +310,29 @@ std::vector<PointSet> RejectionFilter::masked_sets(const FrameImages& images,
   }
   stats_.mask_ms = ms_since(t0);
   return sets;
+}
+
+void RejectionFilter::move_tracks_by_flow() {
+  constexpr size_t kMinFollowed = 4;
+  if (flow_.has_previous()) {
+    std::vector<cv::Point2f> now;
+    std::vector<uint8_t> ok;
+    for (const auto& [track_id, points] : object_points_) {
+      flow_.follow(points, now, ok);
+      std::vector<float> dx, dy;
+      for (size_t i = 0; i < points.size(); ++i)
+        if (ok[i]) {
+          dx.push_back(now[i].x - points[i].x);
+          dy.push_back(now[i].y - points[i].y);
+        }
+      if (dx.size() < kMinFollowed) continue;
+      // The median: the object's bulk, not a swinging arm or a bad track.
+      std::nth_element(dx.begin(), dx.begin() + dx.size() / 2, dx.end());
+      std::nth_element(dy.begin(), dy.begin() + dy.size() / 2, dy.end());
+      box_tracker_.set_motion(track_id, {dx[dx.size() / 2], dy[dy.size() / 2]});
+    }
+  }
+  object_points_.clear();
 }
 
 void RejectionFilter::decide_sets(const FrameImages& images,

@@ -90,6 +90,11 @@ struct RejectionParams {
   // walking person fails the test in ~90 % of its points. 0 = the a-priori
   // rule alone (every keypoint on a dynamic object goes to Z).
   float still_object_max_moving = 0.3f;
+  // masked: a tracked box is moved from frame to frame by the median
+  // optical flow of the keypoints on its object (at least 4 followed), not
+  // by the velocity of its past detections: a carried box then stays on
+  // its object while the camera turns (walking_rpy).
+  bool carry_by_flow = true;
   int still_object_min_points = 5;
   // masked, with ego_motion_flow: movers found without a detection.
   MotionObjectParams motion;
@@ -195,6 +200,12 @@ class RejectionFilter : public KeypointFilter {
   std::vector<int> dynamic_object_;
   // masked: keypoints on an object a detector found (not motion-found).
   std::vector<uint8_t> on_detected_object_;
+  // masked, carry_by_flow: moves each track's box by the median flow of
+  // the keypoints its object held in the last frame (object_points_).
+  void move_tracks_by_flow();
+  // masked, carry_by_flow: the keypoints (positions) on each track's object
+  // this frame, by track id, for the next frame's move_tracks_by_flow.
+  std::vector<std::pair<int, std::vector<cv::Point2f>>> object_points_;
   // masked: the objects found by motion in the last frame, handed to the
   // box tracker with the next frame's detections.
   std::vector<Detection> motion_detections_;

@@ -72,6 +72,10 @@ std::vector<RejectionSetting> make_table() {
   t.push_back(person_mask);
   t.push_back(flag("mask.plane", kNotFull, kMasked, "remove the support plane from object masks",
                    [](P& p) -> bool& { return p.mask.remove_plane; }));
+  t.push_back(flag("tracking.by_flow", kNotFull, kMasked,
+                   "move tracked boxes by their keypoints' optical flow (else by the velocity of "
+                   "past detections)",
+                   [](P& p) -> bool& { return p.carry_by_flow; }));
   const RejectionSetting integers[] = {
       integer("motion.min_seeds", 1, 10000, "keypoints", kFull, kMasked,
               "keypoints failing the flow test that seed a mover",
