@@ -7,4 +7,10 @@ namespace depot {
 
 std::string shortest_number(double value);
 
+// `decimals` digits after the point (fmt's {:.Nf}), or "-" when not finite.
+std::string fixed_number(double value, int decimals);
+
+// A length with two decimals and its unit: "1.50 m".
+std::string metres_text(double value);
+
 }  // namespace depot

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <set>
 
+#include "common/number_text.h"
 #include "common/tum_io.h"
 #include "eval/series_plot.h"
 #include "eval/svg_document.h"
@@ -22,15 +23,11 @@ struct Table {
   std::vector<std::vector<std::string>> rows;
 };
 
-std::string fixed(double v, int digits = 2) {
-  if (!std::isfinite(v)) return "-";
-  return fmt::format("{:.{}f}", v, digits);
-}
-
 // "0.62 (31/50)", or "-" when there is nothing to count.
 std::string cell(const Tally& t) {
   if (t.total == 0) return "-";
-  return fixed(t.rate()) + " (" + std::to_string(t.found) + "/" + std::to_string(t.total) + ")";
+  return fixed_number(t.rate(), 2) + " (" + std::to_string(t.found) + "/" +
+         std::to_string(t.total) + ")";
 }
 
 json tally_json(const Tally& t) {
@@ -74,15 +71,15 @@ std::string note(const DetectionSide& side, const std::string& cls) {
 
 Table class_table(const DetectionSide& side) {
   const DetectionScore& s = *side.score;
-  Table t{"Per class (IoU >= " + fixed(s.rules().min_iou) +
-              "; clearly visible: >= " + fixed(s.rules().clear_min_height, 0) +
-              " px tall, >= " + fixed(s.rules().clear_min_visible, 0) + " visible pixels)",
+  Table t{"Per class (IoU >= " + fixed_number(s.rules().min_iou, 2) +
+              "; clearly visible: >= " + fixed_number(s.rules().clear_min_height, 0) +
+              " px tall, >= " + fixed_number(s.rules().clear_min_visible, 0) + " visible pixels)",
           {"class", "recall (clear)", "recall (all)", "precision", "mean IoU", "note"},
           {}};
   for (const std::string& c : shown_classes(s)) {
     const ClassTally& k = s.tally(c);
-    t.rows.push_back(
-        {c, cell(k.clear), cell(k.all), cell(k.precision), fixed(mean_iou(k)), note(side, c)});
+    t.rows.push_back({c, cell(k.clear), cell(k.all), cell(k.precision),
+                      fixed_number(mean_iou(k), 2), note(side, c)});
   }
   return t;
 }
@@ -130,11 +127,11 @@ Table confusion_table(const DetectionScore& s, bool clear_only) {
           std::find(columns.begin(), columns.end(), called) == columns.end())
         columns.push_back(called);
   columns.push_back(DetectionScore::kMissed);
-  Table t{
-      std::string("Confusion (") + (clear_only ? "clearly visible" : "all") +
-          " boxes): truth class x detected class, matched at IoU >= " + fixed(s.rules().min_iou),
-      {"truth \\ detected"},
-      {}};
+  Table t{std::string("Confusion (") + (clear_only ? "clearly visible" : "all") +
+              " boxes): truth class x detected class, matched at IoU >= " +
+              fixed_number(s.rules().min_iou, 2),
+          {"truth \\ detected"},
+          {}};
   t.header.insert(t.header.end(), columns.begin(), columns.end());
   for (const std::string& c : s.truth_classes()) {
     const auto it = conf.find(c);
@@ -154,7 +151,7 @@ std::string summary_line(const DetectionSide& side) {
   return fmt::format(
       "{} frames; {} false positives ({} per frame); {} detections of unscored labels; detector "
       "{}, median {:.1f} ms per frame",
-      s.frames(), s.false_positives(), fixed(s.false_positives_per_frame(), 3),
+      s.frames(), s.false_positives(), fixed_number(s.false_positives_per_frame(), 3),
       s.other_detections(), side.detector, side.median_ms);
 }
 
@@ -244,7 +241,7 @@ std::string recall_plot(const DetectionSide& side) {
   SeriesPlot plot;
   plot.title = "Recall by box height: " + side.name;
   plot.x_label = "box height (px)";
-  plot.y_label = "recall (IoU >= " + fixed(s.rules().min_iou) + ")";
+  plot.y_label = "recall (IoU >= " + fixed_number(s.rules().min_iou, 2) + ")";
   plot.x_levels = s.rules().height_bucket_names();
   plot.y_lo = 0.0;
   plot.y_hi = 1.0;

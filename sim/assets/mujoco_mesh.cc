@@ -1,7 +1,5 @@
 #include "sim/assets/mujoco_mesh.h"
 
-#include <fmt/format.h>
-
 #include <cstdint>
 #include <cstring>
 #include <map>
@@ -10,6 +8,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/number_text.h"
 #include "common/png_codec.h"
 
 namespace depot::sim {
@@ -20,10 +19,6 @@ static_assert(sizeof(float) == 4 && sizeof(int32_t) == 4, "MSH stores 32-bit val
 template <typename T>
 void append(std::string& out, const T* data, size_t count) {
   out.append(reinterpret_cast<const char*>(data), count * sizeof(T));
-}
-
-std::string num(double v) {
-  return fmt::format("{:.6g}", v);
 }
 
 }  // namespace
@@ -88,8 +83,8 @@ MujocoAssetSet encode_for_mujoco(const AssetModel& model, const std::string& pre
       textures << "<texture name=\"" << tex << "\" type=\"2d\" file=\"" << tex << ".png\"/>\n";
       materials << " texture=\"" << tex << "\"";
     }
-    materials << " rgba=\"" << num(mat.rgba[0]) << " " << num(mat.rgba[1]) << " "
-              << num(mat.rgba[2]) << " " << num(mat.rgba[3])
+    materials << " rgba=\"" << shortest_number(mat.rgba[0]) << " " << shortest_number(mat.rgba[1])
+              << " " << shortest_number(mat.rgba[2]) << " " << shortest_number(mat.rgba[3])
               << "\" specular=\"0\" shininess=\"0\" reflectance=\"0\"/>\n";
   }
   for (size_t i = 0; i < model.meshes.size(); ++i) {

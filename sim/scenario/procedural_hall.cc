@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "common/error.h"
+#include "common/number_text.h"
 #include "common/rng.h"
 
 namespace depot::sim {
@@ -19,10 +20,6 @@ constexpr double kRowDepth = 1.7;       // two racks back to back, 0.1 m apart
 constexpr double kWorkArea = 3.0;       // m, along the south wall
 constexpr double kSideClearance = 0.4;  // m each side of the robot in an aisle
 constexpr double kSlot = 2.2;           // m, a place for goods along the south wall
-
-std::string metres(double v) {
-  return fmt::format("{:.2f} m", v);
-}
 
 double needed_width(int rows, double aisle) {
   return kWallGap + kRackDepth + rows * (aisle + kRowDepth) + aisle + kWorkArea;
@@ -76,17 +73,17 @@ void check_procedural_hall(const ProceduralHallSpec& s) {
   check_range(s.clutter, "clutter", 0, 1, false);
   if (!(s.robot_width >= 0.2 && s.robot_width <= 3))
     fail(s.robot_width_where,
-         "hall.robot_width = " + metres(s.robot_width) + " is out of range [0.2, 3] m");
+         "hall.robot_width = " + metres_text(s.robot_width) + " is out of range [0.2, 3] m");
   const double passage = s.robot_width + 2 * kSideClearance;
   if (s.aisle_width.low < passage)
-    fail(s.aisle_width.where, "hall.aisle_width " + metres(s.aisle_width.low) +
+    fail(s.aisle_width.where, "hall.aisle_width " + metres_text(s.aisle_width.low) +
                                   " is narrower than the robot and its clearance (robot_width " +
-                                  metres(s.robot_width) + " + 2 x 0.40 m = " + metres(passage) +
-                                  ")");
+                                  metres_text(s.robot_width) +
+                                  " + 2 x 0.40 m = " + metres_text(passage) + ")");
   if (s.cross_aisle.high > 0 && s.cross_aisle.low < passage)
-    fail(s.cross_aisle.where, "hall.cross_aisle " + metres(s.cross_aisle.low) +
+    fail(s.cross_aisle.where, "hall.cross_aisle " + metres_text(s.cross_aisle.low) +
                                   " is narrower than the robot and its clearance (" +
-                                  metres(passage) + "); 0 = no cross aisle");
+                                  metres_text(passage) + "); 0 = no cross aisle");
   // The smallest hall must hold the most rows at the widest aisles.
   const int rows = static_cast<int>(s.rack_rows.high);
   const double width = needed_width(rows, s.aisle_width.high);
@@ -94,14 +91,14 @@ void check_procedural_hall(const ProceduralHallSpec& s) {
     fail(s.width.where,
          fmt::format("hall.width {} is too narrow for {} rack row{} with {} aisles and the {:.1f} "
                      "m work area (needs {})",
-                     metres(s.width.low), rows, rows == 1 ? "" : "s", metres(s.aisle_width.high),
-                     kWorkArea, metres(width)));
+                     metres_text(s.width.low), rows, rows == 1 ? "" : "s",
+                     metres_text(s.aisle_width.high), kWorkArea, metres_text(width)));
   const double length = needed_length(s.aisle_width.high, s.rack_length.high, s.cross_aisle.high);
   if (s.length.low < length)
-    fail(s.length.where, "hall.length " + metres(s.length.low) +
+    fail(s.length.where, "hall.length " + metres_text(s.length.low) +
                              " is too short for a rack row with its end aisles and cross aisle "
                              "(needs " +
-                             metres(length) + ")");
+                             metres_text(length) + ")");
 }
 
 SceneLayout generate_procedural_hall(const ProceduralHallSpec& s, uint64_t world_seed) {

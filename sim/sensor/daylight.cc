@@ -1,11 +1,10 @@
 #include "sim/sensor/daylight.h"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <cmath>
 
 #include "common/error.h"
+#include "common/number_text.h"
 #include "sim/sensor/light.h"
 
 namespace depot::sim {
@@ -18,10 +17,6 @@ constexpr double kOnWall = 0.05;  // m, how near a wall an opening's centre must
 constexpr double kBehindWall = 0.05;
 // The floor in front of an open door stays floor: the opening starts 1 cm up.
 constexpr double kAboveFloor = 0.01;
-
-std::string metres(double v) {
-  return fmt::format("{:.2f} m", v);
-}
 
 }  // namespace
 
@@ -45,19 +40,19 @@ std::vector<WallOpening> place_openings(const std::vector<Scenario::Opening>& op
     for (const Wall& w : walls)
       if (w.distance < wall->distance) wall = &w;
     if (wall->distance > kOnWall)
-      fail(o.where, "opening centre (" + metres(x) + ", " + metres(y) + ") is " +
-                        metres(wall->distance) + " from the nearest wall (" + wall->name +
+      fail(o.where, "opening centre (" + metres_text(x) + ", " + metres_text(y) + ") is " +
+                        metres_text(wall->distance) + " from the nearest wall (" + wall->name +
                         "); an opening lies on a wall's foot");
     // It keeps kLeafDepth from the wall's ends: the wall round the corner
     // lies that near its plane and would show the outside too.
     const double along_centre = wall->along.dot(wall->foot);
     if (std::abs(along_centre) + o.width / 2 > wall->half_length - kLeafDepth + 1e-9)
-      fail(o.where, "opening " + metres(o.width) + " wide at " + metres(along_centre) +
-                        " comes within " + metres(kLeafDepth) + " of the end of the " + wall->name +
-                        " wall (" + metres(2 * wall->half_length) + " long)");
+      fail(o.where, "opening " + metres_text(o.width) + " wide at " + metres_text(along_centre) +
+                        " comes within " + metres_text(kLeafDepth) + " of the end of the " +
+                        wall->name + " wall (" + metres_text(2 * wall->half_length) + " long)");
     if (o.height > height + 1e-9)
-      fail(o.where, "opening " + metres(o.height) + " high is taller than the hall (" +
-                        metres(height) + ")");
+      fail(o.where, "opening " + metres_text(o.height) + " high is taller than the hall (" +
+                        metres_text(height) + ")");
     WallOpening w;
     w.foot = wall->foot;
     w.along = wall->along;

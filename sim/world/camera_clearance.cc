@@ -1,17 +1,12 @@
 #include "sim/world/camera_clearance.h"
 
-#include <fmt/format.h>
-
 #include <cstdio>
 
 #include "common/error.h"
+#include "common/number_text.h"
 
 namespace depot::sim {
 namespace {
-
-std::string metres(double d) {
-  return fmt::format("{:.2f} m", d);
-}
 
 std::string frames_text(int first, int last) {
   return first == last ? std::to_string(first) : std::to_string(first) + "-" + std::to_string(last);
@@ -56,7 +51,7 @@ std::string describe_too_close(const CameraClearance& c) {
     const TooCloseRange& r = c.too_close[i];
     const std::string where = r.nearest.distance <= 0.0
                                   ? "inside " + r.nearest.object
-                                  : metres(r.nearest.distance) + " from " + r.nearest.object;
+                                  : metres_text(r.nearest.distance) + " from " + r.nearest.object;
     text += (i ? ", " : "") + frames_text(r.first, r.last) + " (" + where +
             (r.first == r.last ? ")" : " at frame " + std::to_string(r.nearest_frame) + ")");
   }
@@ -69,8 +64,8 @@ void enforce_camera_clearance(const Scenario& s, const CameraClearance& c) {
   if (c.too_close.empty()) return;
   const std::string source =
       s.motion.clearance >= 0.0 ? "motion.clearance" : "the sensor's min_depth";
-  const std::string problem = "the camera comes closer than " + metres(c.required) + " (" + source +
-                              ") to the static scene at " + describe_too_close(c);
+  const std::string problem = "the camera comes closer than " + metres_text(c.required) + " (" +
+                              source + ") to the static scene at " + describe_too_close(c);
   if (!s.motion.allow_close)
     fail(s.source_path, problem + "; move the camera path away, or set motion.allow_close: true");
   std::fprintf(stderr, "depot: warning: %s: %s; rendering anyway (motion.allow_close)\n",

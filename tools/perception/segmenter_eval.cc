@@ -9,6 +9,7 @@
 
 #include "common/error.h"
 #include "common/interrupt.h"
+#include "common/number_text.h"
 #include "common/percentile.h"
 #include "common/png_codec.h"
 #include "common/progress.h"
@@ -31,11 +32,6 @@ cv::Mat segment(slam::PersonSegmenter& segmenter, const cv::Mat& bgr, SegmenterF
   frame.ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return mask;
-}
-
-std::string fixed(double v, int digits = 3) {
-  if (!std::isfinite(v)) return "-";
-  return fmt::format("{:.{}f}", v, digits);
 }
 
 }  // namespace
@@ -96,8 +92,8 @@ std::string SegmenterEval::text() const {
   if (boxes) {
     out += "  image                          mask inside person boxes  boxes covered\n";
     for (const SegmenterFrame& f : frames)
-      out += fmt::format("  {:<30} {:>24}  {:>13}\n", f.name, fixed(f.coverage.inside()),
-                         fixed(f.coverage.covered()));
+      out += fmt::format("  {:<30} {:>24}  {:>13}\n", f.name, fixed_number(f.coverage.inside(), 3),
+                         fixed_number(f.coverage.covered(), 3));
   } else {
     const eval::MaskCounts t = total();
     std::vector<double> ious;
@@ -110,8 +106,9 @@ std::string SegmenterEval::text() const {
     out += fmt::format(
         "  person mask IoU: mean {} over {} frames with people (median {}, p10 {}, p90 {})\n  "
         "pooled pixels: IoU {}, precision {}, recall {}\n",
-        fixed(mean_iou()), ious.size(), fixed(of_ious(0.5)), fixed(of_ious(0.1)),
-        fixed(of_ious(0.9)), fixed(t.iou()), fixed(t.precision()), fixed(t.recall()));
+        fixed_number(mean_iou(), 3), ious.size(), fixed_number(of_ious(0.5), 3),
+        fixed_number(of_ious(0.1), 3), fixed_number(of_ious(0.9), 3), fixed_number(t.iou(), 3),
+        fixed_number(t.precision(), 3), fixed_number(t.recall(), 3));
   }
   return out + fmt::format("  {} frames, median {:.1f} ms per frame ({})\n", frames.size(),
                            median_ms(), segmenter);

@@ -4,20 +4,17 @@
 
 #include <cmath>
 
+#include "common/number_text.h"
 #include "eval/svg_document.h"
 
 namespace depot::harness {
 namespace {
 
-std::string fixed(double v, int decimals) {
-  return fmt::format("{:.{}f}", v, decimals);
-}
-
 std::string display(const TableColumn& c, const TableValue& v) {
   if (c.decimals < 0) return v.text;
   if (!std::isfinite(v.mean)) return "–";
-  std::string s = fixed(v.mean, c.decimals) + c.unit;
-  if (c.with_std && std::isfinite(v.std)) s += " ± " + fixed(v.std, c.decimals) + c.unit;
+  std::string s = fixed_number(v.mean, c.decimals) + c.unit;
+  if (c.with_std && std::isfinite(v.std)) s += " ± " + fixed_number(v.std, c.decimals) + c.unit;
   return s;
 }
 
