@@ -44,16 +44,10 @@ CameraCalibration read_camera_sections(const YAML::Node& root, const std::string
   c.lens.p1 = number(kP1, c.lens.p1);
   c.lens.p2 = number(kP2, c.lens.p2);
   c.lens.k3 = number(kK3, c.lens.k3);
-  const YamlFields depth(root["depth"], path, "depth");
-  // The virtual stereo baseline: camera.baseline (a settings file's), else
-  // the depth sensor's own (depth.baseline, as the simulator writes it: a
-  // RealSense's 50 mm puts ORB-SLAM2's close-point depth at 2 m, not 3),
-  // else the defaults' bf under the new fx.
-  const bool sensor_baseline = depth.has("baseline");
-  if (sensor_baseline) c.depth_baseline = depth.number("baseline", c.depth_baseline, 0.001, 1.0);
-  c.baseline =
-      cam.number("baseline", sensor_baseline ? c.depth_baseline : defaults.bf / c.fx, 0.001, 1.0);
+  // Absent, the baseline keeps the defaults' bf under the new fx.
+  c.baseline = cam.number("baseline", defaults.bf / c.fx, 0.001, 1.0);
   c.bf = c.baseline * c.fx;
+  const YamlFields depth(root["depth"], path, "depth");
   c.depth_factor = depth.number("factor", c.depth_factor, 1e-3, 1e6);
   c.close_baselines = depth.number("close_baselines", c.close_baselines, 1, 1000);
   return c;

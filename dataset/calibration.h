@@ -10,10 +10,10 @@
 //   camera: {model: pinhole, width, height, fx, fy, cx, cy, k1, k2, p1, p2, k3,
 //            baseline (m, ORB-SLAM2's Camera.bf / fx; read, not written)}
 //   depth:  {factor (PNG value per metre), min, max (m, what the sensor
-//            returns), model (kinect or ideal), baseline (m, the depth
-//            sensor's, written by the simulator: the SLAM's virtual
-//            baseline where camera.baseline is absent), close_baselines
-//            (read: ORB-SLAM2's ThDepth, in baselines)}
+//            returns), model (kinect or ideal), baseline (m, the simulated
+//            projector's; written for people, not read: the SLAM's virtual
+//            baseline is camera.baseline), close_baselines (read: ORB-SLAM2's
+//            ThDepth, in baselines)}
 #include <string>
 
 #include <yaml-cpp/yaml.h>
@@ -32,8 +32,7 @@ struct CameraCalibration {
   double baseline = 40.0 / 535.4;
   double depth_factor = 5000.0;
   double close_baselines = 40.0;
-  // Written by the simulator (depth_baseline is read back as `baseline`
-  // where the camera section states none); the rest for people, not read.
+  // Written by the simulator for people; not read.
   double depth_min = 0.0, depth_max = 0.0;
   std::string depth_model = "kinect";
   double depth_baseline = 0.075;

@@ -39,18 +39,10 @@ TEST(Calibration, WrittenTextReadsBackAsTheSameCamera) {
   EXPECT_DOUBLE_EQ(got.lens.k3, 0.0123456789);
   EXPECT_DOUBLE_EQ(got.lens.p2, -0.0005);
   EXPECT_DOUBLE_EQ(got.depth_factor, 5000);
-  // The SLAM's virtual baseline is the depth sensor's where the camera
-  // section states none.
-  EXPECT_DOUBLE_EQ(got.depth_baseline, 0.075);
-  EXPECT_DOUBLE_EQ(got.baseline, 0.075);
-  EXPECT_DOUBLE_EQ(got.bf, 0.075 * 269.6);
-  // A settings file's camera.baseline wins; neither keeps the default bf.
-  testing::write_text(dir, "calibration.yaml",
-                      "camera: {width: 320, height: 240, fx: 269.6, baseline: 0.1}\n"
-                      "depth: {baseline: 0.05}\n");
-  EXPECT_DOUBLE_EQ(read_calibration(dir + "/calibration.yaml").baseline, 0.1);
-  testing::write_text(dir, "calibration.yaml", "camera: {width: 320, height: 240, fx: 269.6}\n");
-  EXPECT_DOUBLE_EQ(read_calibration(dir + "/calibration.yaml").bf, CameraCalibration{}.bf);
+  // The SLAM's virtual baseline is not the file's depth.baseline: absent
+  // camera.baseline keeps the default bf under the file's fx.
+  EXPECT_DOUBLE_EQ(got.bf, CameraCalibration{}.bf);
+  EXPECT_DOUBLE_EQ(got.baseline, CameraCalibration{}.bf / 269.6);
 }
 
 TEST(Calibration, TextIsTheFormatDatasetsHave) {
