@@ -121,14 +121,21 @@ cv::Mat textured(int seed) {
   return img;
 }
 
+// `background` shifted by the camera (cam_dx px), with `patch` pasted at
+// (patch_x, patch_y): a frame of a camera moving past a moving object.
+cv::Mat moved_frame(const cv::Mat& background, const cv::Mat& patch, float cam_dx, int patch_x,
+                    int patch_y) {
+  cv::Mat shifted;
+  cv::Mat m = (cv::Mat_<double>(2, 3) << 1, 0, cam_dx, 0, 1, 0);
+  cv::warpAffine(background, shifted, m, background.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  patch.copyTo(shifted(cv::Rect(patch_x, patch_y, patch.cols, patch.rows)));
+  return shifted;
+}
+
 TEST(FlowTest, SyntheticCameraMotionPlusMovingPatch) {
   cv::Mat background = textured(1), patch = textured(2)(cv::Rect(0, 0, 60, 60)).clone();
   auto frame = [&](float cam_dx, int patch_x) {
-    cv::Mat shifted;
-    cv::Mat m = (cv::Mat_<double>(2, 3) << 1, 0, cam_dx, 0, 1, 0);
-    cv::warpAffine(background, shifted, m, background.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
-    patch.copyTo(shifted(cv::Rect(patch_x, 90, 60, 60)));
-    return shifted;
+    return moved_frame(background, patch, cam_dx, patch_x, 90);
   };
   SparseFlow flow;
   flow.next_frame(frame(0, 100));
@@ -167,11 +174,7 @@ TEST(SparseFlowFollow, FindsPreviousPointsWhereTheyMoved) {
   // level (1/8) still sees it whole.
   cv::Mat background = textured(1), patch = textured(2)(cv::Rect(0, 0, 120, 120)).clone();
   auto frame = [&](float cam_dx, int patch_x) {
-    cv::Mat shifted;
-    cv::Mat m = (cv::Mat_<double>(2, 3) << 1, 0, cam_dx, 0, 1, 0);
-    cv::warpAffine(background, shifted, m, background.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
-    patch.copyTo(shifted(cv::Rect(patch_x, 60, 120, 120)));
-    return shifted;
+    return moved_frame(background, patch, cam_dx, patch_x, 60);
   };
   SparseFlow flow;
   std::vector<cv::Point2f> now;
